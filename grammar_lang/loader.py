@@ -1,0 +1,30 @@
+"""One entry point from a user's file to the typed example: `.gg` or `.svg` → `Example`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .diagnostics import Span, error
+from .example import Example
+from .source import ExampleSource
+
+
+def load_source(path: str | Path) -> ExampleSource:
+    p = Path(path)
+    suffix = p.suffix.lower()
+    if suffix == ".gg":
+        from .gg_parser import parse_file
+        return parse_file(p)
+    if suffix == ".svg":
+        from .svg_import import import_svg
+        return import_svg(p)
+    raise error(f"don't know how to read '{p.name}'", Span(str(p)),
+                "give a .gg example file or an .svg drawing")
+
+
+def load_example(path: str | Path) -> Example:
+    from .labelling import label_example
+    from .planar import build_planar_graph
+    source = load_source(path)
+    graph = build_planar_graph(source) if source.paint else None
+    return label_example(source, graph)

@@ -1,0 +1,59 @@
+"""Grammars: DPO rules over primitive graphs, with the example's header.
+
+A rule's sides have equal boundary strings, matched position by position: the i-th open slot
+of `lhs.boundary` and of `rhs.boundary` are the same interface point. Applying a rule
+destructively replaces a match of `lhs` by `rhs`; constructively, `rhs` by `lhs` (paper §5.2).
+By convention `rhs` is the simpler side. A starter rule has an empty `rhs` and a complete `lhs`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .diagnostics import Span
+from .example import EdgeLabel, Primitive
+from .graph import Side
+from .source import Decoration, EdgeClass, Options
+
+
+@dataclass(frozen=True)
+class Rule:
+    name: str
+    lhs: Side
+    rhs: Side
+    priority: int = 0
+    weight: float = 1.0
+    span: Span | None = field(default=None, compare=False)
+
+    @property
+    def is_starter(self) -> bool:
+        return self.rhs.is_empty
+
+
+@dataclass(frozen=True)
+class Header:
+    """What a rule file records about the example it was compiled from."""
+
+    source: str = ""
+    source_hash: str = ""
+    compiler_version: str = ""
+    exterior: str = "exterior"
+    face_labels: tuple[str, ...] = ()
+    classes: tuple[EdgeClass, ...] = ()
+    labels: tuple[EdgeLabel, ...] = ()
+    primitives: tuple[Primitive, ...] = ()
+    options: Options = Options()
+    unit: float = 1.0
+    decorations: tuple[Decoration, ...] = ()
+    mode: str = "dpo"                 # 'dpo', or 'spo' (dangling edges are deleted)
+    complete: bool | None = None      # None: not known (hand-written)
+
+
+@dataclass(frozen=True)
+class Grammar:
+    header: Header
+    rules: tuple[Rule, ...]
+
+    @property
+    def rings(self):
+        return [p.ring for p in self.header.primitives]

@@ -1,0 +1,1 @@
+"""Shared .gg modules that `import` finds by name."""
