@@ -1,0 +1,41 @@
+"""`ggc`: check an example, show its primitives, compile it into a grammar, verify a grammar."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from grammar_lang.cli_support import ArgumentParser, common_flags, run
+
+
+def build_parser() -> ArgumentParser:
+    parser = ArgumentParser(prog="ggc", description=__doc__)
+    common_flags(parser)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
+    sub.required = True
+
+    p = sub.add_parser("check", help="validate an example (.gg or .svg) and print a summary")
+    p.add_argument("file")
+    common_flags(p)
+
+    p = sub.add_parser("primitives", help="print face labels, edge labels and primitives")
+    p.add_argument("file")
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.add_argument("--ascii", action="store_true", help="ASCII boundary strings")
+    common_flags(p)
+    return parser
+
+
+def _main(argv: Sequence[str]) -> int:
+    args = build_parser().parse_args(argv)
+    if args.command in ("check", "primitives"):
+        from . import inspect_cmd
+        return inspect_cmd.run(args)
+    raise AssertionError(args.command)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    return run(_main, argv)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

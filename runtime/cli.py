@@ -1,0 +1,40 @@
+"""`ggrun`: grow drawings from a grammar, check drawings, or explore a grammar in a REPL."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from grammar_lang.cli_support import ArgumentParser, common_flags, run
+
+
+def build_check_parser() -> ArgumentParser:
+    p = ArgumentParser(prog="ggrun check",
+                       description="check a drawing against its example and explain failures")
+    p.add_argument("example", help="the example (.gg, .svg) or its grammar (.ggr)")
+    p.add_argument("drawing", help="a gg-drawing/1 JSON file")
+    common_flags(p)
+    return p
+
+
+def build_parser() -> ArgumentParser:
+    p = ArgumentParser(prog="ggrun", description=__doc__,
+                       epilog="Also: 'ggrun check EXAMPLE DRAWING.json' verifies a drawing.")
+    p.add_argument("file", nargs="?", help="a grammar (.ggr), or an example (.gg, .svg)")
+    common_flags(p)
+    return p
+
+
+def _main(argv: Sequence[str]) -> int:
+    if argv and argv[0] == "check":
+        args = build_check_parser().parse_args(argv[1:])
+        raise NotImplementedError("ggrun check")
+    args = build_parser().parse_args(argv)
+    raise NotImplementedError("ggrun")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    return run(_main, argv)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
