@@ -1,0 +1,94 @@
+"""The `gg-drawing/1` JSON format: what `ggrun` writes and `ggrun check` reads.
+
+Coordinates are in the example's y-up frame and units. `left`/`right` are the face labels on
+each side walking from `u` to `v`, named as in the source. Extra fields are allowed and kept.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from grammar_lang.diagnostics import Span, error
+from grammar_lang.fileio import atomic_write, read_text
+
+FORMAT = "gg-drawing/1"
+
+
+@dataclass(frozen=True)
+class DVertex:
+    id: int
+    x: float
+    y: float
+
+
+@dataclass(frozen=True)
+class DEdge:
+    u: int
+    v: int
+    left: str
+    right: str
+    cls: str
+    label: str | None = None          # the edge label's name in the grammar, when known
+
+
+@dataclass(frozen=True)
+class Drawing:
+    vertices: tuple[DVertex, ...]
+    edges: tuple[DEdge, ...]
+    meta: dict = field(default_factory=dict, compare=False)
+
+    def to_json(self) -> str:
+        doc = {
+            "format": FORMAT,
+            **{k: v for k, v in sorted(self.meta.items()) if k not in ("format", "vertices", "edges")},
+            "vertices": [{"id": v.id, "x": _num(v.x), "y": _num(v.y)} for v in self.vertices],
+            "edges": [
+                {"u": e.u, "v": e.v, "left": e.left, "right": e.right, "class": e.cls,
+                 **({"label": e.label} if e.label is not None else {})}
+                for e in self.edges
+            ],
+        }
+        return json.dumps(doc, indent=1, ensure_ascii=False) + "\n"
+
+    def save(self, path: str | Path) -> None:
+        atomic_write(path, self.to_json())
+
+
+def _num(x: float) -> float:
+    # A fixed precision keeps files byte-identical across platforms and runs.
+    r = round(float(x), 6)
+    return 0.0 if r == 0 else r
+
+
+def parse_drawing(text: str, path: str = "<drawing>") -> Drawing:
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise error(f"not valid JSON: {exc.msg}", Span(path, exc.lineno, exc.colno),
+                    "a drawing is a gg-drawing/1 JSON file written by ggrun", source=text)
+    if not isinstance(doc, dict) or doc.get("format") != FORMAT:
+        raise error(f"not a {FORMAT} drawing", Span(path),
+                    f'the top-level object needs "format": "{FORMAT}"')
+    try:
+        vertices = tuple(DVertex(int(v["id"]), float(v["x"]), float(v["y"]))
+                         for v in doc["vertices"])
+        edges = tuple(DEdge(int(e["u"]), int(e["v"]), str(e["left"]), str(e["right"]),
+                            str(e.get("class", "0")), e.get("label"))
+                      for e in doc["edges"])
+    except (KeyError, TypeError, ValueError) as exc:
+        raise error(f"malformed drawing: {type(exc).__name__}: {exc}", Span(path),
+                    'vertices need "id", "x", "y"; edges need "u", "v", "left", "right"')
+    ids = {v.id for v in vertices}
+    if len(ids) != len(vertices):
+        raise error("two vertices share an id", Span(path))
+    for e in edges:
+        if e.u not in ids or e.v not in ids:
+            raise error(f"edge {e.u}-{e.v} names a vertex that does not exist", Span(path))
+    meta = {k: v for k, v in doc.items() if k not in ("format", "vertices", "edges")}
+    return Drawing(vertices, edges, meta)
+
+
+def load_drawing(path: str | Path) -> Drawing:
+    return parse_drawing(read_text(path), str(path))
