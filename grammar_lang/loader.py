@@ -18,8 +18,11 @@ def load_source(path: str | Path) -> ExampleSource:
     if suffix == ".svg":
         from .svg_import import import_svg
         return import_svg(p)
+    if suffix == ".json":
+        from .example_json import load_example_json
+        return load_example_json(p)
     raise error(f"don't know how to read '{p.name}'", Span(str(p)),
-                "give a .gg example file or an .svg drawing")
+                "give a .gg example file, an .svg drawing or a gg-example/1 .json file")
 
 
 def load_example(path: str | Path) -> Example:
