@@ -1,0 +1,309 @@
+"""`ExampleSource` geometry → `ExampleGraph`: the planar straight-line graph with face labels.
+
+Steps: collect the segments of every painted shape; merge points closer than the merge
+distance; node (split at crossings and T-junctions, drop zero-length and duplicate pieces);
+compute the faces; label each face by painter's order (the last region covering it, else
+the labels explicit edges give it, else the exterior); keep every stroke and explicit edge and
+every region outline piece not hidden under a later fill.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from .diagnostics import Diagnostic, Span, UserError, error
+from .planar_faces import compute_faces, winding
+from .planar_noding import NodingError, cluster, node
+from .source import DEFAULT_CLASS, ExampleGraph, ExampleSource, ExplicitEdge, Region, Stroke
+
+MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the bounding-box diagonal
+MAX_DIAGNOSTICS = 20
+
+
+@dataclass(frozen=True)
+class _Source:
+    """One painted item, as the builder needs it."""
+
+    order: int              # position in the paint list
+    kind: str               # 'region', 'stroke' or 'explicit'
+    paint: object
+
+
+def merge_distance(source: ExampleSource, points: np.ndarray) -> float:
+    if source.options.merge_distance is not None:
+        return max(0.0, float(source.options.merge_distance))
+    extent = points.max(axis=0) - points.min(axis=0)
+    return MERGE_FRACTION * float(np.hypot(*extent))
+
+
+def build_planar_graph(source: ExampleSource) -> ExampleGraph:
+    builder = _Builder(source)
+    return builder.build()
+
+
+class _Builder:
+    def __init__(self, source: ExampleSource):
+        self.source = source
+        self.diagnostics: list[Diagnostic] = []
+
+    def report(self, message: str, span: Span | None, hint: str | None = None) -> None:
+        if len(self.diagnostics) < MAX_DIAGNOSTICS:
+            self.diagnostics.append(Diagnostic(message, span or Span(self.source.path), hint,
+                                               source=self._text(span)))
+
+    def _text(self, span: Span | None) -> str | None:
+        # Spans may point into an SVG a .gg file imports; only excerpt our own text.
+        if span is not None and span.file == self.source.path:
+            return self.source.text
+        return None
+
+    def check(self) -> None:
+        if self.diagnostics:
+            raise UserError(*self.diagnostics)
+
+    # --- collecting -------------------------------------------------------------------------
+
+    def collect(self):
+        points: list[tuple[float, float]] = []
+        segments: list[tuple[int, int, int]] = []
+        self.items: list[_Source] = []
+        for order, item in enumerate(self.source.paint):
+            if isinstance(item, Region):
+                kind, chains = "region", [(ring, True) for ring in item.rings]
+                if all(abs(_ring_area(ring)) <= 0.0 for ring in item.rings):
+                    self.report(f"the region '{item.label}' has zero area", item.span,
+                                "a filled shape needs at least three points not on one line")
+            elif isinstance(item, Stroke):
+                kind, chains = "stroke", [(item.points, item.closed)]
+            elif isinstance(item, ExplicitEdge):
+                kind, chains = "explicit", [((item.p, item.q), False)]
+            else:
+                raise TypeError(f"unknown paint item {item!r}")
+            sid = len(self.items)
+            self.items.append(_Source(order, kind, item))
+            for chain, closed in chains:
+                base = len(points)
+                points.extend(chain)
+                n = len(chain)
+                for k in range(n if closed and n > 2 else n - 1):
+                    segments.append((base + k, base + (k + 1) % n, sid))
+        self.check()
+        if not segments:
+            raise error("the drawing has no edges", Span(self.source.path),
+                        "draw at least one line or filled shape", source=None)
+        pts = np.asarray(points, dtype=float)
+        if not np.all(np.isfinite(pts)):
+            raise error("the drawing has coordinates that are not finite numbers",
+                        Span(self.source.path))
+        return pts, np.asarray(segments, dtype=np.int64)
+
+    # --- building ---------------------------------------------------------------------------
+
+    def build(self) -> ExampleGraph:
+        points, segments = self.collect()
+        d = merge_distance(self.source, points)
+        centres, index = cluster(points, d)
+        ends = index[segments[:, :2]]
+        self.check_collapse(ends, segments[:, 2], d)
+        try:
+            pieces = node(centres, ends, segments[:, 2], d)
+        except NodingError:
+            raise error("the drawing has near-coincident crossings that cannot be resolved at "
+                        f"merge distance {d:g}", Span(self.source.path),
+                        "set a different merge distance, or redraw the crowded spot") from None
+        if len(pieces.ends) == 0:
+            raise error("every edge of the drawing collapses under merging",
+                        Span(self.source.path), f"points closer than {d:g} are merged")
+        faces = compute_faces(pieces.vertices, pieces.ends)
+        samples = _face_samples(pieces.vertices, pieces.ends, faces)
+        regions = [s for s in self.items if s.kind == "region"]
+        cover = self.coverage(regions, samples, faces.count)
+        self.check_regions(regions, cover, d)
+        labels = self.face_labels(regions, cover, pieces, faces)
+        self.check()
+        return self.assemble(pieces, faces, labels, regions, cover)
+
+    def check_collapse(self, ends: np.ndarray, sids: np.ndarray, d: float) -> None:
+        alive = np.zeros(len(self.items), dtype=bool)
+        alive[sids[ends[:, 0] != ends[:, 1]]] = True
+        for sid in np.flatnonzero(~alive).tolist():
+            item = self.items[sid].paint
+            what = {"region": "filled shape", "stroke": "line",
+                    "explicit": "edge"}[self.items[sid].kind]
+            self.report(f"this {what} has zero length after merging points closer than {d:g}",
+                        item.span, "draw it larger, or set a smaller merge distance")
+        self.check()
+
+    def coverage(self, regions: list[_Source], samples: np.ndarray, count: int) -> np.ndarray:
+        """cover[f, r]: region r paints face f (faces are atomic: every ring is an edge)."""
+        cover = np.zeros((count, len(regions)), dtype=bool)
+        if not regions:
+            return cover
+        boxes = shapely.STRtree(shapely.points(samples[1:]))
+        for r, item in enumerate(regions):
+            rings = [np.asarray(ring, dtype=float) for ring in item.paint.rings if len(ring) > 2]
+            if not rings:
+                continue
+            allp = np.vstack(rings)
+            box = shapely.box(*allp.min(axis=0), *allp.max(axis=0))
+            hit = boxes.query(box, predicate="intersects") + 1
+            if len(hit) == 0:
+                continue
+            a = np.vstack(rings)
+            b = np.vstack([np.roll(ring, -1, axis=0) for ring in rings])
+            w = winding(samples[hit], a, b)
+            cover[hit, r] = (w % 2 != 0) if item.paint.evenodd else (w != 0)
+        return cover
+
+    def check_regions(self, regions: list[_Source], cover: np.ndarray, d: float) -> None:
+        for r in np.flatnonzero(~cover.any(axis=0)).tolist():
+            item = regions[r].paint
+            self.report(f"the region '{item.label}' collapses: nothing of it is left after "
+                        f"merging points closer than {d:g}", item.span,
+                        "draw it larger, or set a smaller merge distance")
+
+    def face_labels(self, regions, cover, pieces, faces) -> list[str]:
+        exterior = self.source.exterior
+        painted: list[str | None] = [None] * faces.count
+        for f in range(1, faces.count):
+            hits = np.flatnonzero(cover[f])
+            if len(hits):
+                painted[f] = regions[hits[-1]].paint.label
+        painted[0] = exterior
+        stated: dict[int, tuple[str, object]] = {}
+        for e, srcs in enumerate(pieces.sources):
+            for sid, forward in srcs:
+                item = self.items[sid]
+                if item.kind != "explicit":
+                    continue
+                edge = item.paint
+                left, right = (edge.left, edge.right) if forward else (edge.right, edge.left)
+                for face, label, side in ((faces.face_of[2 * e], left, "left"),
+                                          (faces.face_of[2 * e + 1], right, "right")):
+                    face = int(face)
+                    if painted[face] is not None and painted[face] != label:
+                        why = ("outside the drawing" if face == 0
+                               else "in a face the drawing paints")
+                        self.report(f"this edge says the face on its {side} is '{label}', but "
+                                    f"that face is {why} '{painted[face]}'", edge.span,
+                                    "make the edge's labels agree with the filled shapes")
+                    elif face in stated and stated[face][0] != label:
+                        other = stated[face][1]
+                        self.report(f"conflicting labels for one face: this edge says "
+                                    f"'{label}' on its {side}, another edge ({other}) says "
+                                    f"'{stated[face][0]}'", edge.span,
+                                    "edges around one face must name the same label")
+                    else:
+                        stated.setdefault(face, (label, edge.span))
+        return [painted[f] if painted[f] is not None
+                else stated.get(f, (exterior,))[0] for f in range(faces.count)]
+
+    def assemble(self, pieces, faces, labels, regions, cover) -> ExampleGraph:
+        later = np.array([s.order for s in regions], dtype=np.int64)
+        kept: list[tuple[int, int, str, str, str, Span | None]] = []
+        for e, srcs in enumerate(pieces.sources):
+            fl, fr = int(faces.face_of[2 * e]), int(faces.face_of[2 * e + 1])
+            both = cover[fl] & cover[fr]
+            hidden_after = later[both].max() if both.any() else -1
+            visible = [self.items[sid] for sid, _ in srcs
+                       if self.items[sid].kind == "explicit"
+                       or self.items[sid].order > hidden_after]
+            if not visible:
+                continue
+            classed = [s for s in visible if s.kind != "region"]
+            decider = max(classed or visible, key=lambda s: s.order)
+            cls = DEFAULT_CLASS if decider.kind == "region" else decider.paint.cls
+            u, v = (int(x) for x in pieces.ends[e])
+            kept.append((u, v, labels[fl], labels[fr], cls, decider.paint.span))
+        kept = _dissolve(kept, pieces.is_input)
+        return _canonical(pieces.vertices, kept)
+
+
+def _ring_area(ring) -> float:
+    if len(ring) < 3:
+        return 0.0
+    arr = np.asarray(ring, dtype=float)
+    x, y = arr[:, 0], arr[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def _face_samples(vertices: np.ndarray, ends: np.ndarray, faces) -> np.ndarray:
+    """A point strictly inside each face (row 0, the unbounded face, is unused).
+
+    Each side of each edge offers the point just off its midpoint, closer than any other edge;
+    a face takes the offer that sits farthest from other edges.
+    """
+    a, b = vertices[ends[:, 0]], vertices[ends[:, 1]]
+    mid = (a + b) / 2.0
+    d = b - a
+    length = np.hypot(d[:, 0], d[:, 1])
+    normal = np.stack([-d[:, 1], d[:, 0]], axis=1) / length[:, None]
+    lines = shapely.linestrings(np.stack([a, b], axis=1))
+    tree = shapely.STRtree(lines)
+    mids = shapely.points(mid)
+    qi, li = tree.query(mids, predicate="dwithin", distance=length.max())
+    others = qi != li
+    qi, li = qi[others], li[others]
+    room = length / 4.0
+    if len(qi):
+        dist = shapely.distance(mids[qi], lines[li])
+        np.minimum.at(room, qi, dist / 2.0)
+    samples = np.zeros((faces.count, 2))
+    best = np.full(faces.count, -1.0)
+    for side, sign in ((0, 1.0), (1, -1.0)):
+        face = faces.face_of[side::2]
+        for e in np.argsort(-room, kind="stable").tolist():
+            f = face[e]
+            if room[e] > best[f]:
+                best[f] = room[e]
+                samples[f] = mid[e] + sign * room[e] * normal[e]
+    return samples
+
+
+def _dissolve(kept, is_input):
+    """Join the two pieces at a vertex noding made (not one the user drew) when only they are
+    left there and they carry the same labels and class: it was a crossing with something that
+    turned out hidden."""
+    degree: dict[int, list[int]] = {}
+    for k, (u, v, *_rest) in enumerate(kept):
+        degree.setdefault(u, []).append(k)
+        degree.setdefault(v, []).append(k)
+    alive = list(kept)
+    for vertex in sorted(degree):
+        if is_input[vertex]:
+            continue
+        ks = [k for k in degree[vertex] if alive[k] is not None]
+        if len(ks) != 2:
+            continue
+        e1, e2 = alive[ks[0]], alive[ks[1]]
+        # Orient e1 to end at the vertex and e2 to start there.
+        if e1[0] == vertex:
+            e1 = (e1[1], e1[0], e1[3], e1[2], e1[4], e1[5])
+        if e2[1] == vertex:
+            e2 = (e2[1], e2[0], e2[3], e2[2], e2[4], e2[5])
+        if e1[2:5] != e2[2:5] or e1[0] == e2[1]:
+            continue
+        joined = (e1[0], e2[1], e1[2], e1[3], e1[4], e1[5] or e2[5])
+        alive[ks[0]], alive[ks[1]] = joined, None
+        for end in (e2[1],):
+            degree[end] = [ks[0] if k == ks[1] else k for k in degree[end]]
+    return [k for k in alive if k is not None]
+
+
+def _canonical(vertices: np.ndarray, kept) -> ExampleGraph:
+    used = sorted({u for u, *_ in kept} | {v for _, v, *_ in kept})
+    coords = np.round(vertices[used], 9) + 0.0        # + 0.0 turns -0.0 into 0.0
+    order = np.lexsort((coords[:, 1], coords[:, 0]))
+    new_id = {used[k]: rank for rank, k in enumerate(order.tolist())}
+    out_vertices = tuple((float(x), float(y)) for x, y in coords[order].tolist())
+    edges = []
+    for u, v, left, right, cls, span in kept:
+        a, b = new_id[u], new_id[v]
+        if a > b:
+            a, b, left, right = b, a, right, left
+        edges.append(((a, b, left, right, cls), span))
+    edges.sort(key=lambda item: item[0])
+    return ExampleGraph(out_vertices, tuple(e for e, _ in edges), tuple(s for _, s in edges))

@@ -1,0 +1,183 @@
+"""Snap-merging and noding of segments: the first half of building a planar graph.
+
+Points closer than the merge distance become one vertex, vertices closer than it to a segment
+split that segment (hand-drawn T-junctions), and crossing segments are split at their crossing.
+Each output piece remembers which input segments it came from and in which direction, so the
+planar builder can attribute labels, classes and places to it. shapely's own noding cannot
+keep that attribution or snap with a tolerance, so this uses shapely only as a spatial index.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+MAX_ROUNDS = 32
+
+
+class NodingError(Exception):
+    """The geometry kept producing new splits: near-degenerate input at this merge distance."""
+
+
+@dataclass
+class Pieces:
+    """Non-crossing segments between distinct vertices, each with its sources.
+
+    `sources[i]` lists (source id, forward) pairs: forward when the source runs from
+    `ends[i, 0]` to `ends[i, 1]`. `is_input[v]` tells whether vertex v is (a merge of) input
+    points rather than a crossing found by noding.
+    """
+
+    vertices: np.ndarray          # (n, 2) float
+    ends: np.ndarray              # (m, 2) int, ends[i, 0] < ends[i, 1]
+    sources: list[list[tuple[int, bool]]]
+    is_input: np.ndarray          # (n,) bool
+
+
+def cluster(points: np.ndarray, distance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Merge points closer than `distance` (transitively) → (centres, index of each point).
+
+    Centres are means of their members, so a point drawn several times weighs more than a
+    stray one. Re-run until no two centres are within `distance` of each other.
+    """
+    index = np.arange(len(points))
+    centres = np.asarray(points, dtype=float)
+    for _ in range(MAX_ROUNDS):
+        if len(centres) < 2:
+            break
+        pairs = cKDTree(centres).query_pairs(distance, output_type="ndarray")
+        if len(pairs) == 0:
+            break
+        n = len(centres)
+        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        count, labels = connected_components(graph, directed=False)
+        weights = np.bincount(index, minlength=n).astype(float)
+        sums = np.zeros((count, 2))
+        np.add.at(sums, labels, centres * weights[:, None])
+        totals = np.bincount(labels, weights=weights, minlength=count)
+        centres = sums / totals[:, None]
+        index = labels[index]
+    return centres, index
+
+
+def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
+         distance: float) -> Pieces:
+    """Split segments (pairs of vertex indices) at crossings and near vertices, dedupe overlaps.
+
+    `vertices` must already be merged (no two closer than `distance`).
+    """
+    vertices = np.asarray(vertices, dtype=float)
+    is_input = np.ones(len(vertices), dtype=bool)
+    ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+    sources: list[list[tuple[int, bool]]] = [[(int(s), True)] for s in source_ids]
+    ends, sources = _dedupe(ends, sources)
+    for _ in range(MAX_ROUNDS):
+        if len(ends) == 0:
+            break
+        splits, new_points = _find_splits(vertices, ends, distance)
+        if not splits:
+            return Pieces(vertices, ends, sources, is_input)
+        if len(new_points):
+            centres, index = cluster(np.asarray(new_points), distance)
+            base = len(vertices)
+            vertices = np.vstack([vertices, centres])
+            is_input = np.concatenate([is_input, np.zeros(len(centres), dtype=bool)])
+            splits = {seg: [v if v >= 0 else base + int(index[-v - 1]) for v in vs]
+                      for seg, vs in splits.items()}
+        ends, sources = _split(vertices, ends, sources, splits)
+        ends, sources = _dedupe(ends, sources)
+    else:
+        raise NodingError("noding did not converge")
+    return Pieces(vertices, ends, sources, is_input)
+
+
+def _find_splits(vertices: np.ndarray, ends: np.ndarray, distance: float):
+    """{segment: [vertex ids to route it through]} and new crossing points (ids -1, -2, …)."""
+    a, b = vertices[ends[:, 0]], vertices[ends[:, 1]]
+    lines = shapely.linestrings(np.stack([a, b], axis=1))
+    tree = shapely.STRtree(lines)
+    splits: dict[int, list[int]] = {}
+
+    # Vertices on or near a segment's interior: T-junctions and collinear overlaps.
+    pts = shapely.points(vertices)
+    vi, si = tree.query(pts, predicate="dwithin", distance=distance)
+    keep = (ends[si, 0] != vi) & (ends[si, 1] != vi)
+    vi, si = vi[keep], si[keep]
+    if len(vi):
+        d = b[si] - a[si]
+        t = np.einsum("ij,ij->i", vertices[vi] - a[si], d) / np.einsum("ij,ij->i", d, d)
+        inside = (t > 0.0) & (t < 1.0)
+        for v, s in zip(vi[inside].tolist(), si[inside].tolist()):
+            splits.setdefault(s, []).append(v)
+
+    # Proper crossings away from every vertex (near a vertex, the T-junction rule applies).
+    i, j = tree.query(lines, predicate="intersects")
+    keep = (i < j) & (ends[i, 0] != ends[j, 0]) & (ends[i, 0] != ends[j, 1]) \
+        & (ends[i, 1] != ends[j, 0]) & (ends[i, 1] != ends[j, 1])
+    i, j = i[keep], j[keep]
+    new_points: list[np.ndarray] = []
+    if len(i):
+        r, s = b[i] - a[i], b[j] - a[j]
+        denom = r[:, 0] * s[:, 1] - r[:, 1] * s[:, 0]
+        qp = a[j] - a[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]) / denom
+            u = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / denom
+        proper = np.isfinite(t) & np.isfinite(u) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
+        i, j, t = i[proper], j[proper], t[proper]
+        crossings = a[i] + t[:, None] * r[proper]
+        if len(crossings):
+            near, _ = shapely.STRtree(pts).query(shapely.points(crossings),
+                                                 predicate="dwithin", distance=distance)
+            far = np.ones(len(crossings), dtype=bool)
+            far[near] = False
+            for k in np.flatnonzero(far).tolist():
+                new_points.append(crossings[k])
+                ident = -len(new_points)
+                splits.setdefault(int(i[k]), []).append(ident)
+                splits.setdefault(int(j[k]), []).append(ident)
+    return splits, new_points
+
+
+def _split(vertices, ends, sources, splits):
+    out_ends: list[tuple[int, int]] = []
+    out_sources: list[list[tuple[int, bool]]] = []
+    for seg in range(len(ends)):
+        u, w = int(ends[seg, 0]), int(ends[seg, 1])
+        through = splits.get(seg)
+        if not through:
+            out_ends.append((u, w))
+            out_sources.append(sources[seg])
+            continue
+        p, d = vertices[u], vertices[w] - vertices[u]
+        ids = np.array(sorted(set(through) - {u, w}), dtype=np.int64)
+        t = (vertices[ids] - p) @ d / (d @ d)
+        chain = [u, *ids[np.argsort(t, kind="stable")].tolist(), w]
+        for x, y in zip(chain, chain[1:]):
+            if x != y:
+                out_ends.append((x, y))
+                out_sources.append(sources[seg])
+    return np.asarray(out_ends, dtype=np.int64).reshape(-1, 2), out_sources
+
+
+def _dedupe(ends, sources):
+    """One piece per unordered vertex pair, lower id first, merging (and flipping) sources."""
+    merged: dict[tuple[int, int], list[tuple[int, bool]]] = {}
+    for (u, w), srcs in zip(ends.tolist(), sources):
+        if u == w:
+            continue
+        key = (u, w) if u < w else (w, u)
+        flip = u > w
+        bucket = merged.setdefault(key, [])
+        for src, forward in srcs:
+            entry = (src, forward != flip)
+            if entry not in bucket:
+                bucket.append(entry)
+    keys = sorted(merged)
+    return (np.asarray(keys, dtype=np.int64).reshape(-1, 2),
+            [sorted(merged[k]) for k in keys])
