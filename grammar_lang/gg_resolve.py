@@ -1,0 +1,516 @@
+"""From `.gg` statements (one file and its imports) to a checked `ExampleSource`.
+
+Two passes over the statements, with imports expanded in place (each module once):
+1. definitions: face labels, colours, classes, points, options, limits, SVG shapes;
+2. uses: geometry, primitives and decorations, checked against the definitions.
+So a name may be used before the line that defines it. A name defined twice in one file is an
+error; a definition in an importing file overrides the imported one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Callable
+
+from . import gg_ast as A
+from . import gg_schema as S
+from .diagnostics import Span, UserError, did_you_mean, error
+from .fileio import read_text
+from .source import (DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
+                     ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
+
+ParseSyntax = Callable[[str, str], tuple]
+BORDER_CLASS = "border"
+_ANGLE_EPS = 1e-6
+
+
+@dataclass
+class _Unit:
+    """One loaded file: its statements, where it is, and how deep in the import tree."""
+
+    path: str
+    text: str
+    stmts: tuple
+    depth: int
+
+    @property
+    def base(self) -> Path:
+        return Path(self.path).parent
+
+
+@dataclass
+class _Defs:
+    """Definitions, each remembering (unit, span) of the statement that made it."""
+
+    origin: dict = field(default_factory=dict)   # (table, name) → (_Unit, Span)
+    name: str | None = None
+    exterior: str = EXTERIOR
+    faces: dict[str, Span | None] = field(default_factory=dict)
+    palette: dict[str, str] = field(default_factory=dict)
+    classes: dict[str, A.ClassDef] = field(default_factory=dict)
+    points: dict[str, tuple[float, float]] = field(default_factory=dict)
+    settings: dict[str, dict[str, object]] = field(
+        default_factory=lambda: {"options": {}, "limits": {}})
+    svg: dict[int, ExampleSource] = field(default_factory=dict)   # id(ShapeFrom) → source
+
+
+def stdlib_modules() -> list[str]:
+    """Names of the modules shipped in the `ggstdlib` package, sorted."""
+    try:
+        root = resources.files("ggstdlib")
+        return sorted(p.name[:-3] for p in root.iterdir() if p.name.endswith(".gg"))
+    except (ModuleNotFoundError, OSError):
+        return []
+
+
+def resolve(text: str, path: Path, parse: ParseSyntax) -> ExampleSource:
+    return _Resolver(parse).run(text, path)
+
+
+class _Resolver:
+    def __init__(self, parse: ParseSyntax):
+        self.parse = parse
+        self.flat: list[tuple[object, _Unit]] = []
+        self.loaded: set[str] = set()
+        self.defs = _Defs()
+
+    # ---- imports ------------------------------------------------------------------------------
+
+    def run(self, text: str, path: Path) -> ExampleSource:
+        root = _Unit(str(path), text, self.parse(text, str(path)), 0)
+        self.loaded.add(_key(path))
+        self._flatten(root, [_key(path)])
+        for stmt, unit in self.flat:
+            self._define(stmt, unit)
+        return self._build(root)
+
+    def _flatten(self, unit: _Unit, stack: list[str]) -> None:
+        for stmt in unit.stmts:
+            if not isinstance(stmt, A.Import):
+                self.flat.append((stmt, unit))
+                continue
+            path, text = self._find_module(stmt, unit)
+            key = _key(path)
+            if key in stack:
+                chain = " → ".join(Path(k).name for k in stack[stack.index(key):] + [key])
+                raise error(f"import cycle: {chain}", stmt.span,
+                            "a module must not import itself, directly or through others",
+                            source=unit.text)
+            if key in self.loaded:
+                continue
+            self.loaded.add(key)
+            child = _Unit(str(path), text, self.parse(text, str(path)), unit.depth + 1)
+            self._flatten(child, stack + [key])
+
+    def _find_module(self, stmt: A.Import, unit: _Unit) -> tuple[Path, str]:
+        name = stmt.target
+        explicit = name.startswith((".", "/")) or name.endswith(".gg") or "/" in name
+        candidates: list[Path] = []
+        if not explicit and name:
+            try:
+                lib = resources.files("ggstdlib") / f"{name}.gg"
+                if lib.is_file():
+                    return Path(str(lib)), lib.read_text(encoding="utf-8")
+            except (ModuleNotFoundError, OSError, ValueError):
+                pass
+        if name:
+            local = unit.base / name
+            candidates = [local] if local.suffix == ".gg" else [local.with_name(local.name + ".gg"),
+                                                                  local]
+        for cand in candidates:
+            if cand.is_file():
+                return cand, read_text(cand)
+        hint = did_you_mean(name, stdlib_modules()) or (
+            "standard modules: " + ", ".join(stdlib_modules()) +
+            "; a file beside this one is imported as \"./name\"")
+        raise error(f"no module named '{name}'", stmt.span, hint, source=unit.text)
+
+    # ---- pass 1: definitions ------------------------------------------------------------------
+
+    def _claim(self, table: str, name: str, span: Span, unit: _Unit, what: str) -> bool:
+        """Whether this definition takes effect; a repeat in the same file is an error."""
+        old = self.defs.origin.get((table, name))
+        if old is not None:
+            old_unit, old_span = old
+            if old_unit.path == unit.path:
+                raise error(f"{what} '{name}' is defined twice", span,
+                            f"the first definition is at {old_span}; remove one",
+                            source=unit.text)
+            if old_unit.depth < unit.depth:
+                return False
+        self.defs.origin[(table, name)] = (unit, span)
+        return True
+
+    def _define(self, stmt, unit: _Unit) -> None:
+        d = self.defs
+        if isinstance(stmt, A.ExampleName):
+            if self._claim("example", "", stmt.span, unit, "the example name"):
+                d.name = stmt.name
+        elif isinstance(stmt, A.Exterior):
+            label = _label_text(stmt.label, unit)
+            if self._claim("exterior", "", stmt.span, unit, "the exterior"):
+                d.exterior = label
+        elif isinstance(stmt, A.Face):
+            label = _label_text(stmt.label, unit)
+            if self._claim("face", label, stmt.span, unit, "face label"):
+                d.faces[label] = stmt.label.span
+        elif isinstance(stmt, A.ColourDef):
+            value = S.colour(stmt.colour, d.palette, unit.text)
+            if self._claim("colour", stmt.name, stmt.span, unit, "colour"):
+                d.palette[stmt.name] = value
+        elif isinstance(stmt, A.ClassDef):
+            name = _label_text(stmt.name, unit)
+            if self._claim("class", name, stmt.span, unit, "class"):
+                d.classes[name] = stmt
+        elif isinstance(stmt, A.Settings):
+            schema = S.OPTIONS if stmt.block == "options" else S.LIMITS
+            values = S.check_block(stmt.props, schema, stmt.block, d.palette, unit.base, unit.text)
+            for key, value in values.items():
+                prop = next(p for p in stmt.props if p.key == key)
+                if self._claim(stmt.block, key, prop.span, unit, f"{stmt.block} setting"):
+                    d.settings[stmt.block][key] = value
+        elif isinstance(stmt, A.PointDef):
+            xy = self._point(stmt.at, unit)
+            if self._claim("point", stmt.name, stmt.span, unit, "point"):
+                d.points[stmt.name] = xy
+        elif isinstance(stmt, A.ShapeFrom):
+            d.svg[id(stmt)] = self._load_svg(stmt, unit)
+
+    def _load_svg(self, stmt: A.ShapeFrom, unit: _Unit) -> ExampleSource:
+        path = unit.base / stmt.path
+        if path.suffix.lower() != ".svg":
+            raise error(f"'{stmt.path}' is not an SVG file", stmt.span,
+                        "`shape from` takes a .svg drawing", source=unit.text)
+        if not path.is_file():
+            raise error(f"SVG file not found: {stmt.path}", stmt.span,
+                        f"paths are relative to the .gg file's folder ({unit.base})",
+                        source=unit.text)
+        from .svg_import import import_svg
+        svg = import_svg(path)
+        for label in svg.face_labels:
+            if label != self.defs.exterior:
+                self.defs.faces.setdefault(label, None)
+        return svg
+
+    # ---- pass 2: uses -------------------------------------------------------------------------
+
+    def _build(self, root: _Unit) -> ExampleSource:
+        d = self.defs
+        classes = {name: self._edge_class(c, self._unit_of("class", name))
+                   for name, c in d.classes.items()}
+        self.class_names = set(classes) | {DEFAULT_CLASS}
+        paint, prims, decos = [], [], []
+        for stmt, unit in self.flat:
+            if isinstance(stmt, A.Face) and (stmt.colour is not None or stmt.props):
+                decos.append(self._face_decoration(stmt, unit))
+            elif isinstance(stmt, A.Polygon):
+                paint.extend(self._polygon(stmt, unit))
+            elif isinstance(stmt, A.Polyline):
+                if stmt.border and stmt.cls is None and BORDER_CLASS not in classes:
+                    classes[BORDER_CLASS] = EdgeClass(BORDER_CLASS, border=True, span=stmt.span)
+                    self.class_names.add(BORDER_CLASS)
+                paint.append(self._polyline(stmt, unit, classes))
+            elif isinstance(stmt, A.Edge):
+                paint.extend(self._edges(stmt, unit))
+            elif isinstance(stmt, A.PrimitiveDef):
+                prims.append((self._primitive(stmt, unit), unit))
+            elif isinstance(stmt, A.ShapeFrom):
+                svg = d.svg[id(stmt)]
+                paint.extend(svg.paint)
+                for name, cls in svg.classes.items():
+                    if name not in classes:
+                        classes[name] = cls
+                        self.class_names.add(name)
+                decos.extend(svg.decorations)
+        # SVG classes (stroke colours) become known only when the shape is loaded, so check
+        # class references after all of them are in.
+        for stmt, unit in self.flat:
+            if isinstance(stmt, A.Decorate):
+                decos.append(self._decoration(stmt, unit, prims))
+        if paint and prims:
+            _, unit = prims[0]
+            raise error("an example gives either a shape or its primitives, not both",
+                        prims[0][0].span,
+                        "remove the primitive blocks, or the polygons/lines/edges/shapes",
+                        source=unit.text)
+        if not paint and not prims:
+            raise error("the example has no shape", Span(root.path, 1, 1),
+                        "draw it with polygon, polyline, loop or edge, take it from an SVG "
+                        "with `shape from \"drawing.svg\"`, or list its primitives",
+                        source=root.text)
+        if prims:
+            _check_pairs(prims)
+        return ExampleSource(
+            path=root.path, name=d.name or Path(root.path).stem, exterior=d.exterior,
+            face_labels={k: v for k, v in d.faces.items() if k != d.exterior},
+            paint=paint, primitives=[p for p, _ in prims], classes=classes,
+            options=self._options(), decorations=decos, text=root.text)
+
+    def _unit_of(self, table: str, name: str) -> _Unit:
+        return self.defs.origin[(table, name)][0]
+
+    def _options(self) -> Options:
+        o, li = self.defs.settings["options"], self.defs.settings["limits"]
+        base, lim = Options(), Limits()
+        limits = Limits(generations=li.get("generations", lim.generations),
+                        half_edges=li.get("half-edges", lim.half_edges),
+                        graphs=li.get("graphs", lim.graphs),
+                        seconds=float(li.get("time", lim.seconds)))
+        return Options(angle_tolerance=float(o.get("angle-tolerance", base.angle_tolerance)),
+                       snap_angle=float(o.get("snap-angle", base.snap_angle)),
+                       merge_distance=o.get("merge-distance", base.merge_distance),
+                       unit=o.get("unit", base.unit),
+                       connected=o.get("connected", base.connected),
+                       no_loops=o.get("no-loops", base.no_loops),
+                       limits=limits)
+
+    # ---- names --------------------------------------------------------------------------------
+
+    def _label(self, word: A.Word, unit: _Unit) -> str:
+        label = _label_text(word, unit)
+        if label == self.defs.exterior or label in self.defs.faces:
+            return label
+        known = [self.defs.exterior, *self.defs.faces]
+        raise error(f"unknown face label '{label}'", word.span,
+                    did_you_mean(label, known) or
+                    f"declare it first with `face {word.text}` (known: {', '.join(known)})",
+                    source=unit.text)
+
+    def _cls(self, word: A.Word | None, unit: _Unit) -> str:
+        if word is None:
+            return DEFAULT_CLASS
+        name = _label_text(word, unit)
+        if name in self.class_names:
+            return name
+        raise error(f"unknown edge class '{name}'", word.span,
+                    did_you_mean(name, self.class_names) or
+                    f"define it with `class {word.text} {{ … }}`; the default class is "
+                    f"'{DEFAULT_CLASS}'", source=unit.text)
+
+    def _point(self, pt: A.Pt, unit: _Unit) -> tuple[float, float]:
+        if isinstance(pt, A.Ref):
+            if pt.name in self.defs.points:
+                return self.defs.points[pt.name]
+            raise error(f"unknown point '{pt.name}'", pt.span,
+                        did_you_mean(pt.name, self.defs.points) or
+                        f"define it with `point {pt.name} (x, y)`", source=unit.text)
+        for n in (pt.x, pt.y):
+            if n.unit not in ("", "px"):
+                raise error(f"a coordinate cannot have the unit '{n.unit}'", n.span,
+                            "coordinates are plain numbers in drawing units (px)",
+                            source=unit.text)
+        return (pt.x.value, pt.y.value)
+
+    # ---- geometry -----------------------------------------------------------------------------
+
+    def _ring(self, ring: A.Ring, unit: _Unit, closed: bool, what: str) -> tuple:
+        pts = [self._point(p, unit) for p in ring.points]
+        if ring.rect:
+            (x0, y0), (x1, y1) = pts
+            if x0 == x1 or y0 == y1:
+                raise error("a rect needs two opposite corners with different x and y",
+                            ring.span, "write rect (x0, y0) (x1, y1)", source=unit.text)
+            lo_x, hi_x, lo_y, hi_y = min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1)
+            return ((lo_x, lo_y), (hi_x, lo_y), (hi_x, hi_y), (lo_x, hi_y))
+        for i in range(1, len(pts)):
+            if pts[i] == pts[i - 1]:
+                raise error(f"{what} repeats the point ({_fmt(pts[i])}) here; that would be a "
+                            "zero-length edge", ring.points[i].span, "remove the repeated point",
+                            source=unit.text)
+        if closed and len(pts) > 1 and pts[0] == pts[-1]:
+            pts.pop()       # a ring closes itself; an explicit closing point is harmless
+        need = 3 if closed else 2
+        if len(set(pts)) < need:
+            raise error(f"{what} needs at least {need} different points, got {len(set(pts))}",
+                        ring.span, "a closed shape needs 3 corners, a line 2 ends",
+                        source=unit.text)
+        return tuple(pts)
+
+    def _polygon(self, stmt: A.Polygon, unit: _Unit) -> list:
+        label = self._label(stmt.label, unit)
+        rings = (self._ring(stmt.outer, unit, True, "a polygon"),
+                 *(self._ring(h, unit, True, "a hole") for h in stmt.holes))
+        out: list = [Region(rings, label, evenodd=bool(stmt.holes), span=stmt.span)]
+        if stmt.cls is not None:
+            cls = self._cls(stmt.cls, unit)
+            out.extend(Stroke(r, True, cls, span=stmt.span) for r in rings)
+        return out
+
+    def _polyline(self, stmt: A.Polyline, unit: _Unit, classes: dict) -> Stroke:
+        what = "a border" if stmt.border else ("a loop" if stmt.closed else "a polyline")
+        pts = self._ring(stmt.ring, unit, stmt.closed, what)
+        if stmt.border:
+            cls = BORDER_CLASS if stmt.cls is None else self._cls(stmt.cls, unit)
+            if cls not in classes or not classes[cls].border:
+                where = stmt.cls.span if stmt.cls is not None else stmt.span
+                raise error(f"class '{cls}' is not a border class", where,
+                            f"add `border` to its definition: class {cls} {{ border }}",
+                            source=unit.text)
+        else:
+            cls = self._cls(stmt.cls, unit)
+        return Stroke(pts, stmt.closed, cls, span=stmt.span)
+
+    def _edges(self, stmt: A.Edge, unit: _Unit) -> list:
+        sides = {"left": None, "right": None, "class": None}
+        for s in stmt.sides:
+            if sides[s.kind] is not None:
+                raise error(f"'{s.kind}' is given twice", s.span, "remove one of them",
+                            source=unit.text)
+            sides[s.kind] = s.word
+        left = self._label(sides["left"], unit) if sides["left"] else self.defs.exterior
+        right = self._label(sides["right"], unit) if sides["right"] else self.defs.exterior
+        cls = self._cls(sides["class"], unit)
+        pts = [self._point(p, unit) for p in stmt.points]
+        out = []
+        for i in range(1, len(pts)):
+            if pts[i] == pts[i - 1]:
+                raise error("zero-length edge: both ends are the same point",
+                            stmt.points[i].span, "an edge must join two different points",
+                            source=unit.text)
+            out.append(ExplicitEdge(pts[i - 1], pts[i], left, right, cls, span=stmt.span))
+        return out
+
+    # ---- classes, primitives, decorations -----------------------------------------------------
+
+    def _edge_class(self, c: A.ClassDef, unit: _Unit) -> EdgeClass:
+        v = S.check_block(c.props, S.CLASS, "class", self.defs.palette, unit.base, unit.text)
+        span = {p.key: p.span for p in c.props}
+
+        def fail(msg, key, hint):
+            raise error(msg, span.get(key, c.span), hint, source=unit.text)
+
+        lo, hi, fixed, tile = v.get("min"), v.get("max"), v.get("fixed"), v.get("tile")
+        if lo is not None and hi is not None and lo > hi:
+            fail(f"min {lo:g} is larger than max {hi:g}", "min", "swap them")
+        if fixed is not None:
+            if v.get("rigid"):
+                fail("a rigid edge keeps its drawn length, so 'fixed' contradicts it", "fixed",
+                     "remove 'fixed' or 'rigid'")
+            if (lo is not None and fixed < lo) or (hi is not None and fixed > hi):
+                fail(f"fixed length {fixed:g} is outside min…max", "fixed",
+                     "widen the range or drop min/max (fixed is enough)")
+            if tile is not None and abs(fixed / tile - round(fixed / tile)) > 1e-9:
+                fail(f"fixed length {fixed:g} is not a multiple of tile {tile:g}", "fixed",
+                     "make fixed a whole multiple of tile")
+        if tile is not None:
+            if v.get("rigid"):
+                fail("a rigid edge keeps its drawn length, so 'tile' contradicts it", "tile",
+                     "remove 'tile' or 'rigid'")
+            if hi is not None and tile > hi:
+                fail(f"tile {tile:g} is longer than max {hi:g}: no length would fit", "tile",
+                     "make max at least one tile")
+        return EdgeClass(_label_text(c.name, unit), lo, hi, fixed, tile, bool(v.get("rigid", False)),
+                         bool(v.get("border", False)), span=c.span)
+
+    def _primitive(self, stmt: A.PrimitiveDef, unit: _Unit) -> PrimitiveSpec:
+        if not stmt.half_edges:
+            raise error("a primitive needs at least one half-edge", stmt.span,
+                        "list its half-edges by direction, e.g. primitive { 0  180 }",
+                        source=unit.text)
+        halves = []
+        for h in stmt.half_edges:
+            if h.angle.unit not in ("", "deg"):
+                raise error(f"a direction cannot have the unit '{h.angle.unit}'", h.angle.span,
+                            "directions are angles in degrees, e.g. 90 or 90deg",
+                            source=unit.text)
+            sides = {"left": None, "right": None, "class": None}
+            for s in h.sides:
+                if sides[s.kind] is not None:
+                    raise error(f"'{s.kind}' is given twice", s.span, "remove one of them",
+                                source=unit.text)
+                sides[s.kind] = s.word
+            angle = (h.angle.value + 180.0) % 360.0 - 180.0
+            left = self._label(sides["left"], unit) if sides["left"] else self.defs.exterior
+            right = self._label(sides["right"], unit) if sides["right"] else self.defs.exterior
+            halves.append((HalfEdgeSpec(angle, left, right, self._cls(sides["class"], unit)), h))
+        halves.sort(key=lambda t: t[0].angle)
+        for (a, ha), (b, hb) in zip(halves, halves[1:]):
+            if abs(a.angle - b.angle) < _ANGLE_EPS:
+                raise error(f"two half-edges point the same way ({a.angle:g}°)", hb.span,
+                            "each direction can leave a vertex only once", source=unit.text)
+        for i, (a, ha) in enumerate(halves):
+            b, hb = halves[(i + 1) % len(halves)]
+            if a.left != b.right:
+                between = (f"between the half-edges at {a.angle:g}° and {b.angle:g}°"
+                           if len(halves) > 1 else f"around the half-edge at {a.angle:g}°")
+                raise error(f"the face {between} is '{a.left}' on one side and '{b.right}' on "
+                            "the other", hb.span if len(halves) > 1 else ha.span,
+                            "going counter-clockwise, each half-edge's left face must be the "
+                            "next half-edge's right face", source=unit.text)
+        return PrimitiveSpec(tuple(h for h, _ in halves), stmt.name, span=stmt.span)
+
+    def _face_decoration(self, stmt: A.Face, unit: _Unit) -> Decoration:
+        props = dict(S.check_block(stmt.props, S.DECORATIONS["face"], "face", self.defs.palette,
+                                   unit.base, unit.text))
+        if stmt.colour is not None:
+            if "fill" in props:
+                raise error("the fill is given twice", stmt.colour.span,
+                            "give the colour after the label or as fill: …, not both",
+                            source=unit.text)
+            props = {"fill": S.colour(stmt.colour, self.defs.palette, unit.text), **props}
+        return Decoration("face", _label_text(stmt.label, unit), tuple(props.items()),
+                          span=stmt.span)
+
+    def _decoration(self, stmt: A.Decorate, unit: _Unit, prims) -> Decoration:
+        kind = stmt.kind.text
+        if kind not in S.DECORATIONS:
+            raise error(f"cannot decorate '{kind}'", stmt.kind.span,
+                        did_you_mean(kind, S.DECORATIONS) or "decorate face, edge or vertex",
+                        source=unit.text)
+        target = stmt.target
+        if target.kind == "star":
+            name = "*"
+        elif kind == "face":
+            name = self._label(target, unit)
+        elif kind == "edge":
+            name = self._cls(target, unit)
+        else:
+            name = target.text
+            named = [p.name for p, _ in prims if p.name]
+            if prims and name not in named:
+                raise error(f"unknown primitive '{name}'", target.span,
+                            did_you_mean(name, named) or "name it: primitive NAME { … }",
+                            source=unit.text)
+        props = S.check_block(stmt.props, S.DECORATIONS[kind], f"{kind} decoration",
+                              self.defs.palette, unit.base, unit.text)
+        return Decoration(kind, name, tuple(props.items()), span=stmt.span)
+
+
+def _check_pairs(prims: list) -> None:
+    """Every half-edge must have a partner it can be glued to, or no shape can be completed."""
+    have = [(h.angle, h.left, h.right, h.cls) for p, _ in prims for h in p.half_edges]
+    for spec, unit in prims:
+        for h in spec.half_edges:
+            want = (h.angle % 360.0) - 180.0
+            ok = any(abs(((a - want + 180.0) % 360.0) - 180.0) < _ANGLE_EPS and l == h.right
+                     and r == h.left and c == h.cls for a, l, r, c in have)
+            if not ok:
+                raise error(f"the half-edge at {h.angle:g}° ({h.left} | {h.right}, class "
+                            f"{h.cls}) has no partner", spec.span,
+                            f"some primitive needs a half-edge at {want:g}° with left "
+                            f"'{h.right}' and right '{h.left}' and the same class, or no shape "
+                            "can ever be completed", source=unit.text)
+
+
+def _label_text(word: A.Word, unit: _Unit) -> str:
+    """Face labels and class names written as colours take the SVG importer's form (lowercase
+    #rrggbb), so that they match the labels and classes of an imported drawing."""
+    if word.kind == "colour":
+        return S.colour(word, {}, unit.text)
+    if word.kind == "star":
+        raise error("'*' is not a face label", word.span, source=unit.text)
+    return word.text
+
+
+def _key(path) -> str:
+    try:
+        return str(Path(str(path)).resolve())
+    except OSError:
+        return str(path)
+
+
+def _fmt(p) -> str:
+    return f"{p[0]:g}, {p[1]:g}"
