@@ -27,24 +27,37 @@ class Side:
     cyclic boundary walk; several components spliced together (paper §4.2, §5.3) are one walk
     whose turns say how they are spliced. The empty graph has boundary () and a complete graph
     (∧) has boundary (bd.UP,).
+
+    `wires` are bare edges with no vertex (the edge graphs `ā a ∧` of §4.3, generation 0), which
+    a rule's simpler side may hold: wire `e` joins its two ends, written as the boundary items
+    `(-1 - e, 0)`, carrying the token `wires[e]` (unbarred `a`), and `(-1 - e, 1)`, carrying
+    `ā`. Replacing a left side by such a right side glues together whatever was attached at
+    the two ends.
     """
 
     vertices: tuple[int, ...]
     edges: tuple[tuple[int, int, int, int], ...]
     boundary: tuple[Item, ...]
     names: tuple[str, ...] = ()       # optional vertex names from a rule file
+    wires: tuple[int, ...] = ()       # bare edges: the unbarred token of each
 
     @property
     def is_empty(self) -> bool:
-        return not self.vertices
+        return not self.vertices and not self.wires
 
     def open_slots(self) -> list[Slot]:
         return [it for it in self.boundary if isinstance(it, tuple)]
 
     def tokens(self, rings: Sequence[Sequence[int]]) -> bd.Tokens:
         """The boundary string, given each primitive's ring of half-edge tokens."""
-        return tuple(it if isinstance(it, int) else rings[self.vertices[it[0]]][it[1]]
+        return tuple(it if isinstance(it, int) else self.slot_token(it, rings)
                      for it in self.boundary)
+
+    def slot_token(self, slot: Slot, rings: Sequence[Sequence[int]]) -> int:
+        v, i = slot
+        if v < 0:
+            return self.wires[-1 - v] ^ i
+        return rings[self.vertices[v]][i]
 
     def vertex_name(self, v: int) -> str:
         return self.names[v] if self.names else f"v{v}"

@@ -1,0 +1,198 @@
+"""Graphs of primitive instances with boundary strings, and the two gluing operations (§4.2).
+
+A `Graph` is connected while it lives in the hierarchy. Its boundary is kept as gaps: the open
+slots in counter-clockwise order, each with the net number of turns (∧ minus ∨) that follow it
+before the next open slot. Gaps are the reduced form of a boundary string, so the string rewrite
+rules of §4.2 become small arithmetic on them:
+
+- loop gluing of consecutive `a ā` (no turn between) or `ā ∨ a` (one ∨ between) removes both
+  slots and adds their turns to the gap before them (companion §3.1: only consecutive slots);
+- branch gluing replaces the open `a` by `B∨`, or `ā` by `∨B`, where B is the other graph's
+  walk after its glued slot.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterator, Sequence
+
+from grammar_lang import boundary as bd
+from grammar_lang.graph import Side
+
+Slot = tuple[int, int]
+Edge = tuple[int, int, int, int]
+Gaps = tuple[tuple[Slot, int], ...]
+
+
+@dataclass(frozen=True)
+class Graph:
+    verts: tuple[int, ...]        # primitive index of each vertex
+    edges: tuple[Edge, ...]       # glued slot pairs (v, i, w, j), (v, i) < (w, j), sorted
+    gaps: Gaps                    # cyclic boundary: (open slot, turns after it)
+
+    @property
+    def n_half(self) -> int:
+        return len(self.gaps)
+
+    @property
+    def is_complete(self) -> bool:
+        return not self.gaps and bool(self.verts)
+
+    def tokens(self, rings: Sequence[Sequence[int]]) -> tuple[tuple[int, int], ...]:
+        """The boundary as (half-edge token, turns after it) pairs."""
+        return tuple((rings[self.verts[v]][i], n) for (v, i), n in self.gaps)
+
+    def string(self, rings: Sequence[Sequence[int]]) -> bd.Tokens:
+        if not self.gaps:
+            return (bd.UP,) if self.verts else ()
+        return bd.from_gaps(self.tokens(rings))
+
+    def side(self) -> Side:
+        return Side(self.verts, self.edges, gaps_to_items(self.gaps, bool(self.verts)))
+
+
+def gaps_to_items(gaps: Gaps, nonempty: bool = True) -> tuple:
+    if not gaps:
+        return (bd.UP,) if nonempty else ()
+    out: list = []
+    for slot, n in gaps:
+        out.append(slot)
+        out.extend(bd.turns(n))
+    return tuple(out)
+
+
+def items_to_gaps(items: Sequence) -> Gaps:
+    """Cyclic items (slots, and signed turn counts) to gaps starting at the first slot."""
+    first = next((k for k, it in enumerate(items) if isinstance(it, tuple)), None)
+    if first is None:
+        return ()
+    rot = list(items[first:]) + list(items[:first])
+    out: list[list] = []
+    for it in rot:
+        if isinstance(it, tuple):
+            out.append([it, 0])
+        else:
+            out[-1][1] += it
+    return tuple((s, n) for s, n in out)
+
+
+def primitive_graph(prim: int, ring_len: int) -> Graph:
+    gaps = tuple(((0, i), 1 if i == ring_len - 1 else 0) for i in range(ring_len))
+    return Graph((prim,), (), gaps)
+
+
+def _items(g: Graph) -> list:
+    out: list = []
+    for s, n in g.gaps:
+        out.append(s)
+        if n:
+            out.append(n)
+    return out
+
+
+def _rotate_to(items: list, slot: Slot) -> list:
+    k = items.index(slot)
+    return items[k:] + items[:k]
+
+
+def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings) -> Graph:
+    """Glue open slot `s` of `g` to open slot `t` of `h` (disjoint graphs, opposite tokens)."""
+    off = len(g.verts)
+    ht = (t[0] + off, t[1])
+    h_items = [(it[0] + off, it[1]) if isinstance(it, tuple) else it for it in _items(h)]
+    after = _rotate_to(h_items, ht)[1:]
+    g_items = _rotate_to(_items(g), s)
+    barred = bd.is_bar(rings[g.verts[s[0]]][s[1]])
+    repl = [-1] + after if barred else after + [-1]
+    items = repl + g_items[1:]
+    edges = g.edges + tuple((v + off, i, w + off, j) for v, i, w, j in h.edges)
+    a, b = sorted((s, ht))
+    edges = tuple(sorted(edges + ((a[0], a[1], b[0], b[1]),)))
+    return Graph(g.verts + h.verts, edges, items_to_gaps(items))
+
+
+def loop_gluable(g: Graph, k: int, rings) -> bool:
+    """Whether the k-th open slot can be loop glued to the next one."""
+    m = len(g.gaps)
+    if m < 2:
+        return False
+    (s1, n1), (s2, _) = g.gaps[k], g.gaps[(k + 1) % m]
+    t1, t2 = rings[g.verts[s1[0]]][s1[1]], rings[g.verts[s2[0]]][s2[1]]
+    if t2 != bd.opposite(t1):
+        return False
+    return n1 == (-1 if bd.is_bar(t1) else 0)
+
+
+def loop_glue(g: Graph, k: int) -> Graph:
+    m = len(g.gaps)
+    (s1, n1), (s2, n2) = g.gaps[k], g.gaps[(k + 1) % m]
+    a, b = sorted((s1, s2))
+    edges = tuple(sorted(g.edges + ((a[0], a[1], b[0], b[1]),)))
+    if m == 2:
+        return Graph(g.verts, edges, ())
+    gaps = list(g.gaps)
+    p = (k - 1) % m
+    gaps[p] = (gaps[p][0], gaps[p][1] + n1 + n2)
+    rest = [gp for idx, gp in enumerate(gaps) if idx not in (k, (k + 1) % m)]
+    return Graph(g.verts, edges, tuple(rest))
+
+
+def children(g: Graph, blocks: Sequence[Graph], rings, allow_loops: bool = True,
+             by_token: dict[int, list[tuple[int, Slot]]] | None = None
+             ) -> Iterator[tuple[str, Graph, tuple[int, ...]]]:
+    """Every graph one gluing away from `g`: loop gluings of consecutive open slots, then branch
+    gluings of each open slot with each block. Yields (kind, child, new vertex ids)."""
+    if allow_loops:
+        for k in range(len(g.gaps)):
+            if loop_gluable(g, k, rings):
+                s = g.gaps[k][0]
+                yield "loop", loop_glue(g, k), (s[0],)
+    if by_token is None:
+        by_token = block_slots(blocks, rings)
+    n = len(g.verts)
+    for s, _ in g.gaps:
+        want = bd.opposite(rings[g.verts[s[0]]][s[1]])
+        for b, t in by_token.get(want, ()):
+            h = blocks[b]
+            yield "branch", branch_glue(g, s, h, t, rings), tuple(range(n, n + len(h.verts)))
+
+
+def block_slots(blocks: Sequence[Graph], rings) -> dict[int, list[tuple[int, Slot]]]:
+    """Token → the (block, open slot) pairs carrying it, in block order."""
+    out: dict[int, list[tuple[int, Slot]]] = {}
+    for b, h in enumerate(blocks):
+        for (v, i), _ in h.gaps:
+            out.setdefault(rings[h.verts[v]][i], []).append((b, (v, i)))
+    return out
+
+
+def walk_boundary(verts: Sequence[int], edges: Sequence[Edge], start: Slot, rings) -> Gaps:
+    """The boundary found by walking the face that leaves through open slot `start`.
+
+    At a vertex the walk turns counter-clockwise to the next slot of the ring (a ∧ when it wraps
+    past the last); crossing an edge from a barred half-edge is a ∨ (the direction turns by
+    −180° through −180°). This is the independent check of the string rewrites above.
+    """
+    partner: dict[Slot, Slot] = {}
+    for v, i, w, j in edges:
+        partner[(v, i)] = (w, j)
+        partner[(w, j)] = (v, i)
+    out: list[list] = []
+    v, i = start
+    out.append([start, 0])
+    for _ in range(4 * (sum(len(rings[p]) for p in verts) + 1)):
+        k = len(rings[verts[v]])
+        turn = 1 if i == k - 1 else 0
+        i = (i + 1) % k
+        out[-1][1] += turn
+        while (v, i) in partner:
+            tok = rings[verts[v]][i]
+            out[-1][1] += -1 if bd.is_bar(tok) else 0
+            v, i = partner[(v, i)]
+            k = len(rings[verts[v]])
+            out[-1][1] += 1 if i == k - 1 else 0
+            i = (i + 1) % k
+        if (v, i) == start:
+            return tuple((s, n) for s, n in out)
+        out.append([(v, i), 0])
+    raise ValueError("boundary walk did not close")

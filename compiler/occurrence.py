@@ -1,0 +1,116 @@
+"""Finding a rule's left side inside a bigger graph (the match m: L → G of §5, Fig. 7).
+
+Primitives fix rotation systems, so a match of a connected L is fixed by where one vertex of L
+goes: every other vertex is reached over L's edges, slot by slot. Open slots of L may be open or
+glued to anything in G (they are the interface), so the dangling condition holds by
+construction.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterator, Sequence
+
+from .gluing import Edge, Graph
+
+Plan = tuple[tuple[int, int, int, int], ...]   # (known vertex u, slot i, new vertex w, slot j)
+
+
+@dataclass(frozen=True)
+class Pattern:
+    """A connected graph prepared for matching from each of its vertices."""
+
+    graph: Graph
+    plans: tuple[Plan, ...]                    # a spanning walk from each root vertex
+    checks: tuple[Edge, ...]                   # every edge, checked once all vertices are placed
+
+    @staticmethod
+    def of(g: Graph) -> "Pattern":
+        part: list[dict[int, tuple[int, int]]] = [{} for _ in g.verts]
+        for v, i, w, j in g.edges:
+            part[v][i] = (w, j)
+            part[w][j] = (v, i)
+        plans = []
+        for root in range(len(g.verts)):
+            seen = {root}
+            order = [root]
+            plan = []
+            k = 0
+            while k < len(order):
+                u = order[k]
+                k += 1
+                for i in sorted(part[u]):
+                    w, j = part[u][i]
+                    if w not in seen:
+                        seen.add(w)
+                        order.append(w)
+                        plan.append((u, i, w, j))
+            plans.append(tuple(plan))
+        return Pattern(g, tuple(plans), g.edges)
+
+
+class Host:
+    """A mutable graph to search in: primitive per vertex (None when deleted) and partners."""
+
+    def __init__(self, verts: Sequence[int], edges: Sequence[Edge]):
+        self.verts: list[int | None] = list(verts)
+        self.part: list[dict[int, tuple[int, int]]] = [{} for _ in verts]
+        for v, i, w, j in edges:
+            self.part[v][i] = (w, j)
+            self.part[w][j] = (v, i)
+        self.by_prim: dict[int, set[int]] = {}
+        for v, p in enumerate(verts):
+            self.by_prim.setdefault(p, set()).add(v)
+
+    def add_vertex(self, p: int) -> int:
+        self.verts.append(p)
+        self.part.append({})
+        self.by_prim.setdefault(p, set()).add(len(self.verts) - 1)
+        return len(self.verts) - 1
+
+    def remove_vertex(self, v: int) -> None:
+        for i, (w, j) in list(self.part[v].items()):
+            if w != v:
+                self.part[w].pop(j, None)
+        self.part[v] = {}
+        self.by_prim[self.verts[v]].discard(v)
+        self.verts[v] = None
+
+    def glue(self, a: tuple[int, int], b: tuple[int, int]) -> None:
+        self.part[a[0]][a[1]] = b
+        self.part[b[0]][b[1]] = a
+
+    def live(self) -> list[int]:
+        return [v for v, p in enumerate(self.verts) if p is not None]
+
+
+def matches(pat: Pattern, host: Host, anchors: Sequence[int] | None = None
+            ) -> Iterator[list[int]]:
+    """Every injective placement of the pattern's vertices in the host (a list: pattern vertex →
+    host vertex). With `anchors`, only placements that use one of those host vertices."""
+    g = pat.graph
+    if anchors is None:
+        roots = [(0, h) for h in sorted(host.by_prim.get(g.verts[0], ()))]
+    else:
+        roots = [(r, h) for h in anchors for r in range(len(g.verts))
+                 if host.verts[h] == g.verts[r]]
+    for r, h in roots:
+        img = [-1] * len(g.verts)
+        img[r] = h
+        used = {h}
+        ok = True
+        for u, i, w, j in pat.plans[r]:
+            q = host.part[img[u]].get(i)
+            if q is None or q[1] != j or q[0] in used or host.verts[q[0]] != g.verts[w]:
+                ok = False
+                break
+            img[w] = q[0]
+            used.add(q[0])
+        if not ok:
+            continue
+        if all(host.part[img[v]].get(i) == (img[w], j) for v, i, w, j in pat.checks):
+            yield img
+
+
+def contains(pat: Pattern, host: Host, anchors: Sequence[int] | None = None) -> bool:
+    return next(matches(pat, host, anchors), None) is not None
