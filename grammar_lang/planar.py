@@ -210,7 +210,7 @@ class _Builder:
             hidden_after = later[both].max() if both.any() else -1
             visible = [self.items[sid] for sid, _ in srcs
                        if self.items[sid].kind == "explicit"
-                       or self.items[sid].order > hidden_after]
+                       or self.items[sid].order >= hidden_after]
             if not visible:
                 continue
             classed = [s for s in visible if s.kind != "region"]
