@@ -92,3 +92,42 @@ def parse_drawing(text: str, path: str = "<drawing>") -> Drawing:
 
 def load_drawing(path: str | Path) -> Drawing:
     return parse_drawing(read_text(path), str(path))
+
+
+def drawing_from_example(example) -> Drawing:
+    """The example's own graph as a drawing, with every edge along its label's exact direction.
+
+    Hand-drawn edges are a few degrees off their label. The positions are moved as little as
+    possible (least squares) so that each edge is parallel to its label, and rigid edges get
+    their exact vector. Edges are written walking along their label's `a` half-edge.
+    """
+    import numpy as np
+
+    graph = example.graph
+    if graph is None:
+        raise ValueError("the example was given as primitives, so it has no drawing")
+    p0 = np.asarray(graph.vertices, dtype=float).reshape(-1)
+    rows, rhs = [], []
+    for (u, v, *_), (li, forward) in zip(graph.edges, example.edge_label):
+        lab = example.labels[li]
+        c, s = np.cos(np.radians(lab.angle)), np.sin(np.radians(lab.angle))
+        # n·(p_v − p_u) = 0 keeps the edge parallel to the label's direction.
+        for (ax, ay), value in [((-s, c), 0.0)] + (
+                [((c, s), lab.length if forward else -lab.length)] if lab.length is not None else []):
+            row = np.zeros_like(p0)
+            row[2 * v], row[2 * v + 1], row[2 * u], row[2 * u + 1] = ax, ay, -ax, -ay
+            rows.append(row)
+            rhs.append(value)
+    pos = p0
+    if rows:
+        a = np.array(rows)
+        delta = np.linalg.lstsq(a, np.array(rhs) - a @ p0, rcond=None)[0]
+        pos = p0 + delta
+    xy = pos.reshape(-1, 2)
+    vertices = tuple(DVertex(i, float(x), float(y)) for i, (x, y) in enumerate(xy))
+    edges = []
+    for (u, v, left, right, cls), (li, forward) in zip(graph.edges, example.edge_label):
+        if not forward:
+            u, v, left, right = v, u, right, left
+        edges.append(DEdge(u, v, left, right, cls, example.labels[li].name))
+    return Drawing(vertices, tuple(edges), {"example": example.name})

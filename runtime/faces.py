@@ -1,0 +1,169 @@
+"""The faces of a straight-line drawing, found geometrically (not from its labels).
+
+Half-edge `2e` walks edge `e` from `u` to `v` and `2e + 1` back. Around each vertex the
+outgoing half-edges are sorted counter-clockwise by angle; the face to the left of `u→v`
+continues at `v` with the outgoing half-edge just clockwise of `v→u`. Every walk so found is a
+boundary cycle. Each connected component has one outer cycle (the one with the least signed
+area: negative, or zero for a tree); its other cycles bound faces of their own. A component's
+outer cycle is a hole in the innermost bounded face of another component that contains it, or
+in the unbounded face. The results only mean something for a drawing with no crossings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+UNBOUNDED = 0
+
+
+@dataclass(frozen=True)
+class Face:
+    outer: int | None              # the cycle bounding it from outside; None for the unbounded face
+    holes: tuple[int, ...]         # outer cycles of the components drawn inside it
+
+
+@dataclass(frozen=True)
+class Faces:
+    cycles: tuple[tuple[int, ...], ...]   # half-edges of each boundary cycle, in walk order
+    cycle_of: np.ndarray                  # half-edge → its cycle
+    area: np.ndarray                      # signed area of each cycle (counter-clockwise > 0)
+    component: np.ndarray                 # vertex → connected component
+    outer_cycle: tuple[int, ...]          # component → its outer cycle (-1: isolated vertex)
+    faces: tuple[Face, ...]               # faces[0] is the unbounded face
+    face_of_cycle: np.ndarray             # cycle → the face it bounds (from inside or as a hole)
+
+    def face_of_half(self, h: int) -> int:
+        """The face to the left of half-edge h."""
+        return int(self.face_of_cycle[self.cycle_of[h]])
+
+
+def half_ends(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end vertex of every half-edge, for edges given as an (m, 2) index array."""
+    src = np.empty(2 * len(edges), dtype=np.int64)
+    src[0::2], src[1::2] = edges[:, 0], edges[:, 1]
+    dst = np.empty_like(src)
+    dst[0::2], dst[1::2] = edges[:, 1], edges[:, 0]
+    return src, dst
+
+
+def next_in_face(xy: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """For each half-edge, the next half-edge along the face on its left."""
+    src, dst = half_ends(edges)
+    d = xy[dst] - xy[src]
+    angle = np.arctan2(d[:, 1], d[:, 0])
+    order = np.lexsort((np.arange(len(src)), angle, src))   # by vertex, then angle ccw
+    s = src[order]
+    start = np.r_[True, s[1:] != s[:-1]]
+    end = np.r_[start[1:], True]
+    # Each group's last position, spread back over the group.
+    last = np.flatnonzero(end)
+    group_end = np.repeat(last, np.diff(np.r_[-1, last]))
+    pos = np.arange(len(s))
+    prev_pos = np.where(start, group_end, pos - 1)
+    clockwise = np.empty_like(src)
+    clockwise[order] = order[prev_pos]
+    twin = np.arange(len(src)) ^ 1
+    return clockwise[twin]
+
+
+def compute_faces(xy: np.ndarray, edges: np.ndarray) -> Faces:
+    """Faces of the drawing with vertex positions `xy` (n, 2) and `edges` (m, 2) of indices."""
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    n, m = len(xy), len(edges)
+    nxt = next_in_face(xy, edges) if m else np.zeros(0, dtype=np.int64)
+    cycle_of = np.full(2 * m, -1, dtype=np.int64)
+    cycles: list[tuple[int, ...]] = []
+    for h0 in range(2 * m):
+        if cycle_of[h0] >= 0:
+            continue
+        walk, h = [], h0
+        while cycle_of[h] < 0:
+            cycle_of[h] = len(cycles)
+            walk.append(h)
+            h = int(nxt[h])
+        cycles.append(tuple(walk))
+    src, dst = half_ends(edges)
+    cross = xy[src, 0] * xy[dst, 1] - xy[dst, 0] * xy[src, 1]
+    area = np.bincount(cycle_of, weights=cross, minlength=len(cycles)) / 2.0 if m else np.zeros(0)
+
+    graph = coo_matrix((np.ones(m), (edges[:, 0], edges[:, 1])), shape=(n, n))
+    _, component = connected_components(graph, directed=False)
+    n_comp = int(component.max()) + 1 if n else 0
+    outer = np.full(n_comp, -1, dtype=np.int64)
+    for c, cyc in enumerate(cycles):
+        k = component[src[cyc[0]]]
+        if outer[k] < 0 or area[c] < area[outer[k]]:
+            outer[k] = c
+    is_outer = np.zeros(len(cycles), dtype=bool)
+    is_outer[outer[outer >= 0]] = True
+
+    bounded = [c for c in range(len(cycles)) if not is_outer[c]]
+    face_of_cycle = np.zeros(len(cycles), dtype=np.int64)
+    for f, c in enumerate(bounded, start=1):
+        face_of_cycle[c] = f
+    holes: list[list[int]] = [[] for _ in range(len(bounded) + 1)]
+    container = _containers(xy, cycles, src, area, bounded, component, outer)
+    for k in range(n_comp):
+        if outer[k] >= 0:
+            f = container[k]
+            face_of_cycle[outer[k]] = f
+            holes[f].append(int(outer[k]))
+    faces = (Face(None, tuple(holes[0])),) + tuple(
+        Face(c, tuple(holes[f])) for f, c in enumerate(bounded, start=1))
+    return Faces(tuple(cycles), cycle_of, area, component, tuple(int(c) for c in outer), faces,
+                 face_of_cycle)
+
+
+def _containers(xy, cycles, src, area, bounded, component, outer) -> list[int]:
+    """For each component, the face (index into bounded + 1, or 0) its outer cycle lies in."""
+    n_comp = len(outer)
+    result = [UNBOUNDED] * n_comp
+    if not bounded:
+        return result
+    boxes = []
+    for c in bounded:
+        p = xy[src[list(cycles[c])]]
+        boxes.append(shapely.box(*p.min(axis=0), *p.max(axis=0)))
+    tree = shapely.STRtree(boxes)
+    # One vertex per component stands for it: components meet no other component.
+    first = np.full(n_comp, -1, dtype=np.int64)
+    for v in range(len(component) - 1, -1, -1):
+        first[component[v]] = v
+    probes = [k for k in range(n_comp) if outer[k] >= 0]
+    points = shapely.points(xy[first[probes]])
+    hit_probe, hit_box = tree.query(points, predicate="intersects")
+    best: dict[int, tuple[float, int]] = {}
+    for pi, bi in zip(hit_probe.tolist(), hit_box.tolist()):
+        k, c = probes[pi], bounded[bi]
+        if component[src[cycles[c][0]]] == k:
+            continue
+        if _inside(xy[first[k]], xy[src[list(cycles[c])]]):
+            key = (float(area[c]), c)
+            if k not in best or key < best[k]:
+                best[k] = key
+    face_index = {c: f for f, c in enumerate(bounded, start=1)}
+    for k, (_, c) in best.items():
+        result[k] = face_index[c]
+    return result
+
+
+def _inside(p: np.ndarray, ring: np.ndarray) -> bool:
+    """Even-odd point-in-polygon; spikes walked there and back cancel out."""
+    x, y = p
+    a, b = ring, np.roll(ring, -1, axis=0)
+    crosses = (a[:, 1] > y) != (b[:, 1] > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return bool(np.count_nonzero(crosses & (x < xs)) % 2)
+
+
+def cycle_points(xy: np.ndarray, edges: np.ndarray, cycle: tuple[int, ...]) -> np.ndarray:
+    """The positions a cycle walks through: the start vertex of each of its half-edges."""
+    hs = np.asarray(cycle, dtype=np.int64)
+    return np.asarray(xy, dtype=float)[np.asarray(edges, dtype=np.int64)[hs >> 1, hs & 1]]

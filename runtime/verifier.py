@@ -1,0 +1,628 @@
+"""Is a drawing locally similar to its example (paper §3.1)? `ggrun check` and its checks.
+
+A drawing passes when
+- every edge fits one of the example's edge labels (faces, class, direction within the angle
+  tolerance), and every vertex's ring of half-edges is one of the example's primitives;
+- all edges of one label point in one exact direction (to float noise);
+- no two edges cross, touch or overlap, and no two vertices coincide;
+- every length respects its class (min/max, fixed, tile multiples, rigid exact vector);
+- the faces, found geometrically, agree with the labels the edges state on their sides: a
+  component drawn inside a face must have that face's label around it.
+
+The verifier is deliberately independent of the generator: it shares no geometry code with it,
+so a bug there cannot hide itself here.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections import Counter, defaultdict
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from grammar_lang import boundary as bd
+from grammar_lang.diagnostics import Span, did_you_mean, error
+from grammar_lang.example import EdgeLabel, Primitive
+from grammar_lang.source import Decoration, EdgeClass
+
+from .drawing import Drawing, load_drawing
+from .faces import UNBOUNDED, compute_faces
+
+# "One exact direction": directions agree to this many degrees, plus what rounding the
+# coordinates to 6 decimals (as gg-drawing/1 files do) can move an edge's end.
+DIRECTION_EPS_DEG = 1e-6
+COORD_SLACK = 2e-6
+# Vertices closer than this fraction of the drawing's extent are one point.
+COINCIDE_FRACTION = 1e-9
+
+KINDS = ("label", "ring", "direction", "length", "degenerate", "coincident", "crossing",
+         "touch", "overlap", "face", "nesting")
+
+
+@dataclass(frozen=True)
+class Reference:
+    """What a drawing is checked against: the parts of an `Example` or a `.ggr` `Header`."""
+
+    name: str
+    exterior: str
+    face_labels: tuple[str, ...]
+    labels: tuple[EdgeLabel, ...]
+    primitives: tuple[Primitive, ...]
+    classes: tuple[EdgeClass, ...]
+    angle_tolerance: float
+    unit: float
+    decorations: tuple[Decoration, ...] = ()
+
+    @property
+    def label_names(self) -> tuple[str, ...]:
+        return tuple(l.name for l in self.labels)
+
+    def format(self, tokens) -> str:
+        return bd.format_tokens(tokens, self.label_names)
+
+
+def as_reference(obj) -> Reference:
+    """Adapt an `Example`, a `Header`, or anything carrying a `.header` (a `Grammar`)."""
+    if isinstance(obj, Reference):
+        return obj
+    if hasattr(obj, "header"):
+        obj = obj.header
+    unit = float(getattr(obj, "unit", 1.0) or 1.0)
+    classes = tuple(c if c.min_length is not None and c.max_length is not None
+                    else c.resolved(unit) for c in obj.classes)
+    name = getattr(obj, "name", None) or getattr(obj, "source", "") or ""
+    return Reference(str(name), obj.exterior, tuple(obj.face_labels), tuple(obj.labels),
+                     tuple(obj.primitives), classes, float(obj.options.angle_tolerance), unit,
+                     tuple(getattr(obj, "decorations", ())))
+
+
+@dataclass(frozen=True)
+class Failure:
+    """One reason a drawing is not locally similar to its example."""
+
+    kind: str                              # one of KINDS
+    message: str
+    vertices: tuple[int, ...] = ()         # vertex ids, as in the drawing
+    edges: tuple[int, ...] = ()            # edge indices into the drawing's edge list
+    at: tuple[float, float] | None = None  # where to look, in the drawing's coordinates
+    expected: str | None = None
+    found: str | None = None
+
+    def render(self) -> str:
+        lines = [f"{self.kind}: {self.message}"]
+        if self.at is not None:
+            lines.append(f"  at {_pt(self.at)}")
+        if self.expected is not None:
+            lines.append(f"  expected: {self.expected}")
+        if self.found is not None:
+            lines.append(f"  found:    {self.found}")
+        return "\n".join(lines)
+
+
+def _pt(p) -> str:
+    return f"({_num(p[0])}, {_num(p[1])})"
+
+
+def _num(x: float) -> str:
+    text = f"{x:.6f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _deg(a: float) -> str:
+    return f"{_num(a)}°"
+
+
+def _wrap(a):
+    """Degrees into [-180, 180), for scalars and arrays."""
+    return (a + 180.0) % 360.0 - 180.0
+
+
+def _some(items, limit: int = 8) -> str:
+    items = list(items)
+    head = ", ".join(str(i) for i in items[:limit])
+    return head + (f" (+{len(items) - limit} more)" if len(items) > limit else "")
+
+
+class _Index:
+    """Lookups into the reference, built once per check."""
+
+    def __init__(self, ref: Reference):
+        self.ref = ref
+        self.by_name = {l.name: i for i, l in enumerate(ref.labels)}
+        self.by_sides: dict[tuple[str, str, str], list[tuple[int, bool]]] = defaultdict(list)
+        for i, l in enumerate(ref.labels):
+            self.by_sides[(l.cls, l.left, l.right)].append((i, False))
+            self.by_sides[(l.cls, l.right, l.left)].append((i, True))
+        # Labels alike in every respect (rigid edges give one label each) are one token here.
+        first: dict[tuple, int] = {}
+        self.canon = [first.setdefault((l.angle, l.left, l.right, l.cls, l.length), i)
+                      for i, l in enumerate(ref.labels)]
+        self.rings: dict[bd.Tokens, int] = {}
+        for k, p in enumerate(ref.primitives):
+            self.rings.setdefault(self.canon_ring(p.ring), k)
+        self.classes = {c.name: c for c in ref.classes}
+        self.faces = set(ref.face_labels) | {ref.exterior}
+
+    def direction(self, token: int) -> float:
+        return self.ref.labels[bd.label_of(token)].direction(bd.is_bar(token))
+
+    def canon_token(self, token: int) -> int:
+        return bd.half(self.canon[bd.label_of(token)], bd.is_bar(token))
+
+    def canon_ring(self, ring) -> bd.Tokens:
+        return tuple(sorted((self.canon_token(t) for t in ring),
+                            key=lambda t: (self.direction(t), t)))
+
+    def nearest_primitive(self, ring: bd.Tokens) -> tuple[Primitive, list[int], list[int]]:
+        """The primitive whose ring differs least from `ring`: (it, missing, unexpected)."""
+        have = Counter(ring)
+        best = None
+        for k, p in enumerate(self.ref.primitives):
+            want = Counter(self.canon_ring(p.ring))
+            missing, extra = want - have, have - want
+            score = (sum(missing.values()) + sum(extra.values()), k)
+            if best is None or score < best[0]:
+                best = (score, p, sorted(missing.elements()), sorted(extra.elements()))
+        return best[1], best[2], best[3]
+
+
+@dataclass
+class _Geometry:
+    ids: list[int]
+    xy: np.ndarray        # (n, 2)
+    ends: np.ndarray      # (m, 2) vertex indices
+    angle: np.ndarray     # (m,) direction of u→v in degrees
+    length: np.ndarray    # (m,)
+
+
+def _geometry(drawing: Drawing) -> _Geometry:
+    ids = [v.id for v in drawing.vertices]
+    index = {v: i for i, v in enumerate(ids)}
+    xy = np.array([(v.x, v.y) for v in drawing.vertices], dtype=float).reshape(-1, 2)
+    ends = np.array([(index[e.u], index[e.v]) for e in drawing.edges], dtype=np.int64).reshape(-1, 2)
+    d = xy[ends[:, 1]] - xy[ends[:, 0]]
+    return _Geometry(ids, xy, ends, np.degrees(np.arctan2(d[:, 1], d[:, 0])), np.hypot(d[:, 0], d[:, 1]))
+
+
+def check_drawing(reference, drawing: Drawing, tolerance: float | None = None) -> list[Failure]:
+    """Every way `drawing` fails to be locally similar to `reference`; [] when it passes.
+
+    `reference` is an `Example`, a `Header`, a `Grammar` or a `Reference`. `tolerance`
+    overrides the example's angle tolerance (degrees) for matching edges to labels.
+    """
+    ref = as_reference(reference)
+    ix = _Index(ref)
+    tol = ref.angle_tolerance if tolerance is None else float(tolerance)
+    g = _geometry(drawing)
+    ctx = _Context(ref, ix, drawing, g, tol)
+    ctx.degenerate()
+    ctx.assign_labels()
+    ctx.rings()
+    ctx.directions()
+    ctx.lengths()
+    if ctx.geometry() and not ctx.bad_edges:
+        ctx.face_labels()
+    return ctx.failures
+
+
+class _Context:
+    def __init__(self, ref: Reference, ix: _Index, drawing: Drawing, g: _Geometry, tol: float):
+        self.ref, self.ix, self.d, self.g, self.tol = ref, ix, drawing, g, tol
+        self.failures: list[Failure] = []
+        self.bad_edges: set[int] = set()                     # degenerate: left out of geometry
+        self.assigned: dict[int, tuple[int, bool]] = {}      # edge → (label, u→v walks along a)
+
+    def fail(self, *args, **kw) -> None:
+        self.failures.append(Failure(*args, **kw))
+
+    def edge_name(self, e: int) -> str:
+        de = self.d.edges[e]
+        return f"edge #{e} ({de.u}→{de.v})"
+
+    def vertex_at(self, i: int) -> tuple[float, float]:
+        return (float(self.g.xy[i, 0]), float(self.g.xy[i, 1]))
+
+    def mid(self, e: int) -> tuple[float, float]:
+        a, b = self.g.xy[self.g.ends[e]]
+        return (float(a[0] + b[0]) / 2, float(a[1] + b[1]) / 2)
+
+    # --- edges and their labels -------------------------------------------------------------
+    def degenerate(self) -> None:
+        for e in range(len(self.d.edges)):
+            u, v = self.g.ends[e]
+            if u == v:
+                self.bad_edges.add(e)
+                self.fail("degenerate", f"{self.edge_name(e)} is a loop from a vertex to itself",
+                          (self.d.edges[e].u,), (e,), self.vertex_at(u))
+            elif self.g.length[e] <= COORD_SLACK:
+                self.bad_edges.add(e)
+                self.fail("degenerate", f"{self.edge_name(e)} has zero length",
+                          (self.d.edges[e].u, self.d.edges[e].v), (e,), self.vertex_at(u))
+
+    def assign_labels(self) -> None:
+        ref, ix = self.ref, self.ix
+        for e, de in enumerate(self.d.edges):
+            if e in self.bad_edges:
+                continue
+            theta = float(self.g.angle[e])
+            sides = f"{de.left}|{de.right}, class {de.cls}"
+            found = f"direction {_deg(theta)}, faces {sides}"
+            unknown = [f for f in (de.left, de.right) if f not in ix.faces]
+            if unknown:
+                hint = did_you_mean(unknown[0], ix.faces)
+                self.fail("label", f"{self.edge_name(e)}: face label '{unknown[0]}' is not one of "
+                          f"the example's" + (f" ({hint})" if hint else ""), edges=(e,),
+                          at=self.mid(e), expected=", ".join(sorted(ix.faces)), found=found)
+                continue
+            if de.cls not in ix.classes:
+                hint = did_you_mean(de.cls, ix.classes)
+                self.fail("label", f"{self.edge_name(e)}: edge class '{de.cls}' is not one of "
+                          f"the example's" + (f" ({hint})" if hint else ""), edges=(e,),
+                          at=self.mid(e), expected=", ".join(sorted(ix.classes)), found=found)
+                continue
+            if de.label is not None and de.label not in ix.by_name:
+                hint = did_you_mean(de.label, ix.by_name)
+                self.fail("label", f"{self.edge_name(e)}: no edge label '{de.label}' in the example"
+                          + (f" ({hint})" if hint else ""), edges=(e,), at=self.mid(e),
+                          expected=", ".join(ref.label_names), found=de.label)
+                continue
+            cands = ix.by_sides.get((de.cls, de.left, de.right), [])
+            if de.label is not None:
+                cands = [c for c in cands if c[0] == ix.by_name[de.label]]
+            best = None
+            for li, bar in cands:
+                lab = ref.labels[li]
+                dev = abs(_wrap(theta - lab.direction(bar)))
+                fit = abs(self.g.length[e] - lab.length) if lab.length is not None else 0.0
+                key = (round(dev, 6), fit, li)
+                if best is None or key < best[0]:
+                    best = (key, li, bar, dev)
+            if best is not None and best[3] <= self.tol:
+                self.assigned[e] = (best[1], not best[2])
+                continue
+            if de.label is not None:
+                lab = ref.labels[ix.by_name[de.label]]
+                expected = (f"label {lab.name}: direction {_deg(lab.angle)} with faces "
+                            f"{lab.left}|{lab.right}, or {_deg(lab.direction(True))} with faces "
+                            f"{lab.right}|{lab.left}, class {lab.cls}")
+                self.fail("label", f"{self.edge_name(e)} does not fit its label '{de.label}' "
+                          f"within {_deg(self.tol)}", edges=(e,), at=self.mid(e),
+                          expected=expected, found=found)
+            elif best is None:
+                self.fail("label", f"{self.edge_name(e)}: no edge label of the example has faces "
+                          f"{sides}", edges=(e,), at=self.mid(e),
+                          expected="one of: " + "; ".join(
+                              f"{l.left}|{l.right} class {l.cls}" for l in _unique_sides(ref)),
+                          found=found)
+            else:
+                lab = ref.labels[best[1]]
+                self.fail("label", f"{self.edge_name(e)} points {_deg(best[3])} away from the "
+                          f"nearest edge label with its faces, more than the tolerance "
+                          f"{_deg(self.tol)}", edges=(e,), at=self.mid(e),
+                          expected=f"label {lab.name}: direction {_deg(lab.direction(best[2]))} "
+                                   f"with faces {sides}", found=found)
+
+    def token_at_start(self, e: int) -> int:
+        """The half-edge token of edge e at its u end (the half pointing from u to v)."""
+        li, forward = self.assigned[e]
+        return bd.half(li, not forward)
+
+    # --- vertices ---------------------------------------------------------------------------
+    def rings(self) -> None:
+        ix = self.ix
+        # Per vertex: (token, actual angle, edge, whether the vertex is the edge's u).
+        around: list[list[tuple[int, float, int, bool]]] = [[] for _ in self.g.ids]
+        blocked = set()
+        for e in range(len(self.d.edges)):
+            u, v = (int(x) for x in self.g.ends[e])
+            if e not in self.assigned:
+                blocked.update((u, v))
+                continue
+            t = self.token_at_start(e)
+            theta = float(self.g.angle[e])
+            around[u].append((t, theta, e, True))
+            around[v].append((bd.opposite(t), float(_wrap(theta + 180.0)), e, False))
+        for i, halves in enumerate(around):
+            if i in blocked:
+                continue   # an edge there fits no label: already reported
+            vid = self.g.ids[i]
+            halves.sort(key=lambda h: (ix.direction(h[0]), h[0]))
+            ring = tuple(ix.canon_token(h[0]) for h in halves)
+            found = self._describe(halves)
+            if ring in ix.rings:
+                angles = [h[1] for h in halves]
+                if len(angles) > 2 and not _cyclic_increasing(angles):
+                    prim = self.ref.primitives[ix.rings[ring]]
+                    self.fail("ring", f"the half-edges around vertex {vid} are not in the order "
+                              f"of primitive {prim.name}", (vid,), tuple(h[2] for h in halves),
+                              self.vertex_at(i), expected=self.ref.format(prim.boundary),
+                              found=found)
+                continue
+            if not self.ref.primitives:
+                self.fail("ring", f"vertex {vid}: the example has no primitives", (vid,),
+                          at=self.vertex_at(i), found=found)
+                continue
+            prim, missing, extra = ix.nearest_primitive(ring)
+            diff = []
+            if missing:
+                diff.append("missing " + " ".join(self.ref.format((t,)) for t in missing))
+            if extra:
+                diff.append("unexpected " + " ".join(self.ref.format((t,)) for t in extra))
+            what = "has no edges" if not halves else "matches no primitive of the example"
+            self.fail("ring", f"vertex {vid} {what}; nearest is {prim.name} "
+                      f"({', '.join(diff)})", (vid,), tuple(h[2] for h in halves),
+                      self.vertex_at(i), expected=f"{prim.name}: {self.ref.format(prim.boundary)}",
+                      found=found)
+
+    def _describe(self, halves) -> str:
+        if not halves:
+            return "no half-edges"
+        ring = self.ref.format(tuple(h[0] for h in halves) + (bd.UP,))
+        parts = []
+        for t, angle, e, at_start in halves:
+            de = self.d.edges[e]
+            left, right = (de.left, de.right) if at_start else (de.right, de.left)
+            parts.append(f"{self.ref.format((t,))} {_deg(angle)} {left}|{right}")
+        return f"{ring}  [{'; '.join(parts)}]"
+
+    # --- exact directions -------------------------------------------------------------------
+    def directions(self) -> None:
+        by_label: dict[int, list[int]] = defaultdict(list)
+        for e in sorted(self.assigned):
+            by_label[self.assigned[e][0]].append(e)
+        for li, es in sorted(by_label.items()):
+            lab = self.ref.labels[li]
+            along = np.array([self.g.angle[e] if self.assigned[e][1] else self.g.angle[e] + 180.0
+                              for e in es])
+            dev = _wrap(along - lab.angle)
+            eps = DIRECTION_EPS_DEG + np.degrees(COORD_SLACK / self.g.length[es])
+            groups = _direction_groups(dev, eps)
+            if len(groups) == 1:
+                continue
+            groups.sort(key=lambda gr: (-len(gr), abs(float(np.mean(dev[gr]))), gr[0]))
+            main = groups[0]
+            off = sorted(es[k] for gr in groups[1:] for k in gr)
+            found = "; ".join(
+                f"{_deg(lab.angle + float(np.mean(dev[gr])))}: edges "
+                f"{_some('#' + str(es[k]) for k in gr)}" for gr in groups)
+            self.fail("direction", f"the {len(es)} edges of label {lab.name} point in "
+                      f"{len(groups)} directions, not one", edges=tuple(off),
+                      at=self.mid(off[0]),
+                      expected=f"all at {_deg(lab.angle + float(np.mean(dev[main])))} "
+                               f"(as {len(main)} of them)", found=found)
+
+    # --- lengths ----------------------------------------------------------------------------
+    def lengths(self) -> None:
+        for e, de in enumerate(self.d.edges):
+            if e in self.bad_edges or de.cls not in self.ix.classes:
+                continue
+            c = self.ix.classes[de.cls]
+            L = float(self.g.length[e])
+            slack = COORD_SLACK + 1e-9 * L
+            problem = expected = None
+            label = self.ref.labels[self.assigned[e][0]] if e in self.assigned else None
+            if c.rigid and label is not None and label.length is not None:
+                if abs(L - label.length) > slack:
+                    problem, expected = "is not its rigid length", f"exactly {_num(label.length)}"
+            elif c.fixed is not None:
+                if abs(L - c.fixed) > slack:
+                    problem, expected = "is not its class's fixed length", f"exactly {_num(c.fixed)}"
+            else:
+                if c.tile:
+                    k = round(L / c.tile)
+                    if k < 1 or abs(L - k * c.tile) > slack:
+                        problem = "is not a whole multiple of its class's tile"
+                        expected = f"a multiple of {_num(c.tile)}"
+                if problem is None and c.min_length is not None and L < c.min_length - slack:
+                    problem, expected = "is shorter than its class allows", f"at least {_num(c.min_length)}"
+                if problem is None and c.max_length is not None and L > c.max_length + slack:
+                    problem, expected = "is longer than its class allows", f"at most {_num(c.max_length)}"
+            if problem:
+                self.fail("length", f"{self.edge_name(e)} (class {de.cls}) {problem}",
+                          (de.u, de.v), (e,), self.mid(e), expected=expected, found=_num(L))
+
+    # --- crossings, touches, overlaps, coincident vertices ----------------------------------
+    def geometry(self) -> bool:
+        """Report geometric conflicts; whether there were none (faces are then well defined)."""
+        before = len(self.failures)
+        g = self.g
+        n = len(g.ids)
+        if n >= 2:
+            extent = float(np.ptp(g.xy, axis=0).max())
+            r = max(COINCIDE_FRACTION * extent, 1e-12)
+            for i, j in sorted(cKDTree(g.xy).query_pairs(r)):
+                self.fail("coincident", f"vertices {g.ids[i]} and {g.ids[j]} are at one point",
+                          (g.ids[i], g.ids[j]), at=self.vertex_at(i))
+        good = np.array([e for e in range(len(self.d.edges)) if e not in self.bad_edges],
+                        dtype=np.int64)
+        if len(good):
+            ends = g.ends[good]
+            segs = shapely.linestrings(np.stack([g.xy[ends[:, 0]], g.xy[ends[:, 1]]], axis=1))
+            tree = shapely.STRtree(segs)
+            a, b = tree.query(segs, predicate="intersects")
+            keep = a < b
+            a, b = a[keep], b[keep]
+            self._pairs(good, ends, segs, a, b)
+            degree = np.bincount(ends.ravel(), minlength=n)
+            lonely = np.flatnonzero(degree == 0)
+            if len(lonely):
+                pi, si = tree.query(shapely.points(g.xy[lonely]), predicate="intersects")
+                for p, s in sorted(zip(pi.tolist(), si.tolist())):
+                    e = int(good[s])
+                    self.fail("touch", f"vertex {g.ids[lonely[p]]} lies on {self.edge_name(e)}",
+                              (g.ids[lonely[p]],), (e,), self.vertex_at(lonely[p]))
+        return len(self.failures) == before
+
+    def _pairs(self, good, ends, segs, a, b) -> None:
+        ea, eb = ends[a], ends[b]
+        same = ((ea[:, :, None] == eb[:, None, :]).sum(axis=(1, 2)))
+        xy = self.g.xy
+        # Sharing one end: fine unless they leave it in the same direction.
+        one = np.flatnonzero(same == 1)
+        if len(one):
+            pa, pb = ea[one], eb[one]
+            w = np.where((pa[:, 0] == pb[:, 0]) | (pa[:, 0] == pb[:, 1]), pa[:, 0], pa[:, 1])
+            oa = np.where(pa[:, 0] == w, pa[:, 1], pa[:, 0])
+            ob = np.where(pb[:, 0] == w, pb[:, 1], pb[:, 0])
+            da, db = xy[oa] - xy[w], xy[ob] - xy[w]
+            cross = da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]
+            dot = (da * db).sum(axis=1)
+            scale = np.hypot(*da.T) * np.hypot(*db.T)
+            bad = one[(np.abs(cross) <= 1e-12 * scale) & (dot > 0)]
+        else:
+            bad = np.zeros(0, dtype=np.int64)
+        problems = sorted(set(bad.tolist()) | set(np.flatnonzero(same != 1).tolist()),
+                          key=lambda k: (int(good[a[k]]), int(good[b[k]])))
+        for k in problems:
+            e, f = int(good[a[k]]), int(good[b[k]])
+            vs = tuple(dict.fromkeys(self.g.ids[int(x)] for x in (*ends[a[k]], *ends[b[k]])))
+            if same[k] >= 1:
+                self.fail("overlap", f"{self.edge_name(e)} and {self.edge_name(f)} overlap",
+                          vs, (e, f), self.mid(e))
+                continue
+            inter = shapely.intersection(segs[a[k]], segs[b[k]])
+            if inter.geom_type != "Point":
+                self.fail("overlap", f"{self.edge_name(e)} and {self.edge_name(f)} overlap",
+                          vs, (e, f), self.mid(e))
+                continue
+            p = np.array([inter.x, inter.y])
+            ends_here = [int(x) for x in (*ends[a[k]], *ends[b[k]])
+                         if np.hypot(*(xy[int(x)] - p)) <= COORD_SLACK]
+            on_a = any(x in ends[a[k]] for x in ends_here)
+            on_b = any(x in ends[b[k]] for x in ends_here)
+            if on_a and on_b:
+                continue   # two vertices at one point: reported as coincident
+            if on_a or on_b:
+                v = ends_here[0]
+                other = f if on_a else e
+                self.fail("touch", f"vertex {self.g.ids[v]} lies on {self.edge_name(other)} "
+                          f"without being one of its ends", vs, (e, f), (float(p[0]), float(p[1])))
+            else:
+                self.fail("crossing", f"{self.edge_name(e)} and {self.edge_name(f)} cross",
+                          vs, (e, f), (float(p[0]), float(p[1])))
+
+    # --- faces ------------------------------------------------------------------------------
+    def face_labels(self) -> None:
+        g, edges = self.g, self.d.edges
+        faces = compute_faces(g.xy, g.ends)
+        left = [edges[h >> 1].right if h & 1 else edges[h >> 1].left for h in range(2 * len(edges))]
+
+        def majority(cycle) -> str:
+            counts = Counter(left[h] for h in cycle)
+            return min(counts, key=lambda k: (-counts[k], k))
+
+        def disagree(cycle, label: str) -> list[int]:
+            return sorted({h >> 1 for h in cycle if left[h] != label})
+
+        def bounded_by(cycle) -> str:
+            return "edges " + _some(f"#{e}" for e in sorted({h >> 1 for h in cycle}))
+
+        for f, face in enumerate(faces.faces):
+            if f == UNBOUNDED:
+                label, where = self.ref.exterior, "the unbounded face (outside everything)"
+            else:
+                cyc = faces.cycles[face.outer]
+                label = majority(cyc)
+                where = f"the face bounded by {bounded_by(cyc)}"
+                wrong = disagree(cyc, label)
+                if wrong:
+                    got = Counter(left[h] for h in cyc)
+                    self.fail("face", f"{where} has different labels on its sides: "
+                              + ", ".join(f"{k} ({got[k]})" for k in sorted(got)),
+                              edges=tuple(wrong), at=self.mid(wrong[0]),
+                              expected=f"'{label}' on every edge's side facing it",
+                              found=f"edges {_some('#' + str(e) for e in wrong)} say otherwise")
+            for hole in face.holes:
+                cyc = faces.cycles[hole]
+                outside = majority(cyc)
+                comp = faces.component[g.ends[cyc[0] >> 1, 0]]
+                members = [g.ids[v] for v in np.flatnonzero(faces.component == comp)]
+                if outside != label:
+                    self.fail("nesting", f"the component of vertices {_some(members)} is drawn "
+                              f"inside {where}, which is labelled '{label}', but its outside is "
+                              f"labelled '{outside}'", tuple(members),
+                              tuple(sorted({h >> 1 for h in cyc})),
+                              self.vertex_at(int(g.ends[cyc[0] >> 1, 0])),
+                              expected=f"'{label}' around it", found=f"'{outside}'")
+                wrong = disagree(cyc, outside)
+                if wrong:
+                    self.fail("face", f"the outside of the component of vertices "
+                              f"{_some(members)} has different labels: "
+                              + ", ".join(sorted({left[h] for h in cyc})),
+                              edges=tuple(wrong), at=self.mid(wrong[0]),
+                              expected=f"'{outside}' all around",
+                              found=f"edges {_some('#' + str(e) for e in wrong)} say otherwise")
+
+
+def _unique_sides(ref: Reference) -> list[EdgeLabel]:
+    seen, out = set(), []
+    for l in ref.labels:
+        key = (l.left, l.right, l.cls)
+        if key not in seen:
+            seen.add(key)
+            out.append(l)
+    return out
+
+
+def _direction_groups(dev: np.ndarray, eps: np.ndarray) -> list[list[int]]:
+    """Indices grouped by equal direction; a group is anchored at its smallest deviation, so
+    slow drift cannot chain many slightly different directions into one."""
+    order = np.argsort(dev, kind="stable")
+    groups: list[list[int]] = []
+    anchor = None
+    for k in order.tolist():
+        if anchor is None or dev[k] - dev[anchor] > eps[k] + eps[anchor]:
+            groups.append([k])
+            anchor = k
+        else:
+            groups[-1].append(k)
+    return groups
+
+
+def _cyclic_increasing(angles: list[float]) -> bool:
+    n = len(angles)
+    return abs(sum((angles[(i + 1) % n] - angles[i]) % 360.0 for i in range(n)) - 360.0) < 1e-6
+
+
+# --- the command ----------------------------------------------------------------------------
+
+def load_reference(path: str | Path) -> Reference:
+    """The example (.gg, .svg, .json) or compiled grammar (.ggr) a drawing is checked against."""
+    p = Path(path)
+    if p.suffix.lower() == ".ggr":
+        from grammar_lang.ggr_parser import load_ggr
+        return as_reference(load_ggr(p))
+    if p.suffix.lower() not in (".gg", ".svg", ".json"):
+        raise error(f"don't know how to read '{p.name}' as an example", Span(str(p)),
+                    "give the example (.gg, .svg) or the grammar compiled from it (.ggr)")
+    from grammar_lang.loader import load_example
+    return as_reference(load_example(p))
+
+
+def check_command(example: str, drawing: str, tolerance: float | None = None,
+                  limit: int = 50, out=None) -> int:
+    """`ggrun check`: 0 when the drawing passes, 1 when it fails; user errors raise."""
+    out = out or sys.stdout
+    ref = load_reference(example)
+    d = load_drawing(drawing)
+    if tolerance is not None and not (0 <= tolerance < 90):
+        raise error(f"--tolerance {tolerance} is out of range", None,
+                    "give an angle in degrees, at least 0 and below 90")
+    failures = check_drawing(ref, d, tolerance)
+    if not failures:
+        out.write(f"ok: {len(d.vertices)} vertices, {len(d.edges)} edges\n")
+        return 0
+    shown = failures if limit <= 0 else failures[:limit]
+    for f in shown:
+        out.write(f.render() + "\n")
+    kinds = Counter(f.kind for f in failures)
+    summary = ", ".join(f"{kinds[k]} {k}" for k in KINDS if kinds[k])
+    more = f" ({len(failures) - len(shown)} not shown; --all shows them)" if len(shown) < len(failures) else ""
+    out.write(f"failed: {len(failures)} problem(s) in {len(d.vertices)} vertices, "
+              f"{len(d.edges)} edges: {summary}{more}\n")
+    return 1
