@@ -201,6 +201,9 @@ class _Resolver:
         d = self.defs
         classes = {name: self._edge_class(c, self._unit_of("class", name))
                    for name, c in d.classes.items()}
+        for svg in d.svg.values():      # a class the .gg defines wins over the drawing's
+            for name, cls in svg.classes.items():
+                classes.setdefault(name, cls)
         self.class_names = set(classes) | {DEFAULT_CLASS}
         paint, prims, decos = [], [], []
         for stmt, unit in self.flat:
@@ -220,16 +223,9 @@ class _Resolver:
             elif isinstance(stmt, A.ShapeFrom):
                 svg = d.svg[id(stmt)]
                 paint.extend(svg.paint)
-                for name, cls in svg.classes.items():
-                    if name not in classes:
-                        classes[name] = cls
-                        self.class_names.add(name)
                 decos.extend(svg.decorations)
-        # SVG classes (stroke colours) become known only when the shape is loaded, so check
-        # class references after all of them are in.
-        for stmt, unit in self.flat:
-            if isinstance(stmt, A.Decorate):
-                decos.append(self._decoration(stmt, unit, prims))
+            elif isinstance(stmt, A.Decorate):
+                decos.append(self._decoration(stmt, unit))
         if paint and prims:
             _, unit = prims[0]
             raise error("an example gives either a shape or its primitives, not both",
@@ -454,7 +450,7 @@ class _Resolver:
         return Decoration("face", _label_text(stmt.label, unit), tuple(props.items()),
                           span=stmt.span)
 
-    def _decoration(self, stmt: A.Decorate, unit: _Unit, prims) -> Decoration:
+    def _decoration(self, stmt: A.Decorate, unit: _Unit) -> Decoration:
         kind = stmt.kind.text
         if kind not in S.DECORATIONS:
             raise error(f"cannot decorate '{kind}'", stmt.kind.span,
@@ -469,8 +465,9 @@ class _Resolver:
             name = self._cls(target, unit)
         else:
             name = target.text
-            named = [p.name for p, _ in prims if p.name]
-            if prims and name not in named:
+            defs = [s for s, _ in self.flat if isinstance(s, A.PrimitiveDef)]
+            named = [s.name for s in defs if s.name]
+            if defs and name not in named:
                 raise error(f"unknown primitive '{name}'", target.span,
                             did_you_mean(name, named) or "name it: primitive NAME { … }",
                             source=unit.text)
