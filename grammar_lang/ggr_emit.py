@@ -1,0 +1,210 @@
+"""Write a `Grammar` as `.ggr` text (docs/ggr-language.md), so that `parse_ggr` gives it back.
+
+The output is deterministic: it follows the order of the grammar's tuples and contains no
+time stamps. Numbers are written exactly (the shortest text that reads back as the same
+float), names that are not plain identifiers are quoted, and comments show what a reader would
+otherwise work out by hand: boundary strings in Unicode and the directions of primitives.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import unicodedata
+
+from . import boundary as bd
+from .ggr_file import stamp
+from .ggr_parser import FORMAT_VERSION
+from .graph import Side
+from .rules import Grammar, Header, Rule
+from .source import DEFAULT_CLASS, Options
+
+WIDTH = 96   # wrap vertex and edge lists at this many columns
+
+# A word that starts a line inside a side; a vertex spelled like it is quoted so that it is
+# never misread. Elsewhere keywords and names never compete (the lexer is contextual).
+KEYWORDS = frozenset({"boundary"})
+_PLAIN = re.compile(r"[^\W\d]\w*")
+
+
+def emit_ggr(grammar: Grammar) -> str:
+    h = grammar.header
+    names = [l.name for l in h.labels]
+    out: list[str] = []
+    out.append("# Graph grammar rules written by ggc. Format: docs/ggr-language.md")
+    out.append("# Edit freely: once edited, `ggc compile` will not overwrite this file without --force.")
+    out.append(f"ggr {FORMAT_VERSION}")
+    out.append("")
+    out.extend(_header(h, names))
+    for rule in grammar.rules:
+        out.append("")
+        out.extend(_rule(rule, h, names))
+    return stamp("\n".join(out) + "\n")
+
+
+def _header(h: Header, names: list[str]) -> list[str]:
+    out = []
+    if h.source or h.source_hash:
+        out.append(f"source {quote(h.source)}" + (f" hash {quote(h.source_hash)}"
+                                                  if h.source_hash else ""))
+    if h.compiler_version:
+        out.append(f"compiler {quote(h.compiler_version)}")
+    out.append(f"mode {h.mode}")
+    status = {True: "complete", False: "limited", None: "unknown"}[h.complete]
+    out.append(f"status {status}")
+    out.append("options " + _options(h.options))
+    lim = h.options.limits
+    out.append(f"limits generations={lim.generations} half_edges={lim.half_edges} "
+               f"graphs={lim.graphs} seconds={num(lim.seconds)}")
+    out.append(f"unit {num(h.unit)}")
+    out.append("")
+    out.append(f"exterior {name(h.exterior)}")
+    if h.face_labels:
+        out.append("faces " + " ".join(name(f) for f in h.face_labels))
+    if h.classes:
+        out.append("")
+    for c in h.classes:
+        parts = [f"class {name(c.name)}"]
+        for key, value in (("min", c.min_length), ("max", c.max_length), ("fixed", c.fixed),
+                           ("tile", c.tile)):
+            if value is not None:
+                parts.append(f"{key}={num(value)}")
+        parts += [flag for flag, on in (("rigid", c.rigid), ("border", c.border)) if on]
+        out.append(" ".join(parts))
+    if h.labels:
+        out.append("")
+    for l in h.labels:
+        line = f"label {name(l.name)} angle={num(l.angle)} left={name(l.left)} right={name(l.right)}"
+        if l.cls != DEFAULT_CLASS:
+            line += f" class={name(l.cls)}"
+        if l.length is not None:
+            line += f" length={num(l.length)}"
+        out.append(line)
+    if h.primitives:
+        out.append("")
+    for p in h.primitives:
+        line = f"primitive {name(p.name)} = {ring(p.ring, names)}"
+        if p.count != 1:
+            line += f" count={p.count}"
+        dirs = " ".join(f"{num(h.labels[bd.label_of(t)].direction(bd.is_bar(t)))}°" for t in p.ring)
+        out.append(f"{line}  # {_safe(bd.format_tokens(p.boundary, names))}  ({dirs})")
+    if h.decorations:
+        out.append("")
+    for d in h.decorations:
+        target = "*" if d.target == "*" else name(d.target)
+        props = "".join(f" {k}={_value(v)}" for k, v in d.props)
+        out.append(f"decorate {d.kind} {target}{props}")
+    return out
+
+
+def _options(o: Options) -> str:
+    def auto(v):
+        return "auto" if v is None else num(v)
+
+    return (f"angle_tolerance={num(o.angle_tolerance)} snap_angle={num(o.snap_angle)} "
+            f"merge_distance={auto(o.merge_distance)} unit={auto(o.unit)} "
+            f"connected={str(o.connected).lower()} no_loops={str(o.no_loops).lower()}")
+
+
+def _rule(rule: Rule, h: Header, names: list[str]) -> list[str]:
+    rings = [p.ring for p in h.primitives]
+    kind = "starter" if rule.is_starter else "rule"
+    lhs_tokens = rule.lhs.tokens(rings)
+    comment = (f"∂L = {bd.format_tokens(lhs_tokens, names) or 'ε'}" if rule.is_starter
+               else f"∂ = {bd.format_tokens(lhs_tokens, names) or 'ε'}")
+    out = [f"{kind} {name(rule.name)} priority={rule.priority} weight={num(rule.weight)} {{"
+           f"  # {_safe(comment)}"]
+    out += _side("lhs", rule.lhs, h, names)
+    if not rule.is_starter:
+        out += _side("rhs", rule.rhs, h, names)
+    out.append("}")
+    return out
+
+
+def _side(which: str, side: Side, h: Header, names: list[str]) -> list[str]:
+    rings = [p.ring for p in h.primitives]
+    vname = [name(side.vertex_name(v)) for v in range(len(side.vertices))]
+
+    def slot(v: int, i: int) -> str:
+        return f"{vname[v]}.{ring([rings[side.vertices[v]][i]], names)}"
+
+    out = [f"  {which} {{"]
+    out += _wrap([f"{vname[v]}: {name(h.primitives[p].name)}" for v, p in enumerate(side.vertices)])
+    out += _wrap([f"{slot(v, i)} -- {slot(w, j)}" for v, i, w, j in side.edges])
+    if side.boundary:
+        items = [slot(*it) if isinstance(it, tuple) else ("+" if it == bd.UP else "-")
+                 for it in side.boundary]
+        out.append("    boundary " + " ".join(items))
+    out.append("  }")
+    return out
+
+
+def _wrap(items: list[str], indent: str = "    ") -> list[str]:
+    lines, cur = [], ""
+    for item in items:
+        if cur and len(indent) + len(cur) + 3 + len(item) > WIDTH:
+            lines.append(indent + cur)
+            cur = ""
+        cur = f"{cur}   {item}" if cur else item
+    if cur:
+        lines.append(indent + cur)
+    return lines
+
+
+def ring(tokens, names: list[str]) -> str:
+    return " ".join(("~" if bd.is_bar(t) else "") + name(names[bd.label_of(t)]) for t in tokens)
+
+
+def name(text: str) -> str:
+    """A name as the language spells it: bare when it is a plain identifier, else quoted."""
+    if _PLAIN.fullmatch(text) and text not in KEYWORDS:
+        return text
+    return quote(text)
+
+
+def quote(text: str) -> str:
+    parts = ['"']
+    for ch in text:
+        if ch in '"\\':
+            parts.append("\\" + ch)
+        elif ch == "\n":
+            parts.append("\\n")
+        elif ch == "\t":
+            parts.append("\\t")
+        elif ch == "\r":
+            parts.append("\\r")
+        elif unicodedata.category(ch)[0] in "CZ" and ch != " ":
+            # Control, format and separator characters would be invisible or break lines.
+            code = ord(ch)
+            parts.append(f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}")
+        else:
+            parts.append(ch)
+    parts.append('"')
+    return "".join(parts)
+
+
+def _safe(text: str) -> str:
+    """Text for a comment: control and line-separator characters escaped, nothing else."""
+    return "".join(quote(ch)[1:-1] if unicodedata.category(ch) in ("Cc", "Cf", "Zl", "Zp")
+                   else ch for ch in text)
+
+
+def num(x: float) -> str:
+    """The shortest exact text for a number: 90 rather than 90.0, else repr."""
+    if isinstance(x, bool):
+        raise TypeError("a flag is not a number")
+    if isinstance(x, int):
+        return str(x)
+    if math.isinf(x) and x > 0:
+        return "inf"
+    if x == int(x) and abs(x) < 2 ** 53:
+        return str(int(x))
+    return repr(x)
+
+
+def _value(v: object) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return num(v)
+    return quote(str(v))
