@@ -65,10 +65,11 @@ class _Lines:
             prev, last = tok.type, tok
             yield tok
         if prev != "_NL":
-            end = Token("_NL", "\n")
-            if last is not None:
-                end = Token.new_borrow_pos("_NL", "", last)
-            yield end
+            if last is None:
+                yield Token("_NL", "")
+            else:  # placed just after the last token, where a missing ')' or value belongs
+                yield Token("_NL", "", last.end_pos, last.end_line, last.end_column,
+                            last.end_line, last.end_column, last.end_pos)
 
 
 @lru_cache(maxsize=1)

@@ -76,6 +76,7 @@ class _Resolver:
         self.flat: list[tuple[object, _Unit]] = []
         self.loaded: set[str] = set()
         self.defs = _Defs()
+        self.prim_spans: dict[str, Span] = {}
 
     # ---- imports ------------------------------------------------------------------------------
 
@@ -422,6 +423,12 @@ class _Resolver:
             left = self._label(sides["left"], unit) if sides["left"] else self.defs.exterior
             right = self._label(sides["right"], unit) if sides["right"] else self.defs.exterior
             halves.append((HalfEdgeSpec(angle, left, right, self._cls(sides["class"], unit)), h))
+        if stmt.name is not None:
+            first = self.prim_spans.setdefault(stmt.name, stmt.span)
+            if first is not stmt.span:
+                raise error(f"primitive '{stmt.name}' is defined twice", stmt.span,
+                            f"the first definition is at {first}; rename one",
+                            source=unit.text)
         halves.sort(key=lambda t: t[0].angle)
         for (a, ha), (b, hb) in zip(halves, halves[1:]):
             if abs(a.angle - b.angle) < _ANGLE_EPS:
