@@ -21,9 +21,10 @@ from .source import DEFAULT_CLASS, Options
 
 WIDTH = 96   # wrap vertex and edge lists at this many columns
 
-# A word that starts a line inside a side; a vertex spelled like it is quoted so that it is
-# never misread. Elsewhere keywords and names never compete (the lexer is contextual).
-KEYWORDS = frozenset({"boundary"})
+# Words that compete with names inside a side (`boundary` starts a line, `wire` follows a
+# colon); a name spelled like one is quoted so that it is never misread. Elsewhere keywords
+# and names never compete, because the lexer only looks for what may come next.
+KEYWORDS = frozenset({"boundary", "wire"})
 _PLAIN = re.compile(r"[^\W\d]\w*")
 
 
@@ -124,12 +125,24 @@ def _rule(rule: Rule, h: Header, names: list[str]) -> list[str]:
 def _side(which: str, side: Side, h: Header, names: list[str]) -> list[str]:
     rings = [p.ring for p in h.primitives]
     vname = [name(side.vertex_name(v)) for v in range(len(side.vertices))]
+    # Wires have no stored names: call them w0, w1, … unless a vertex already is.
+    taken = set(vname)
+    wname = []
+    for e in range(len(side.wires)):
+        cand = f"w{e}"
+        while cand in taken:
+            cand += "_"
+        taken.add(cand)
+        wname.append(cand)
 
     def slot(v: int, i: int) -> str:
-        return f"{vname[v]}.{ring([rings[side.vertices[v]][i]], names)}"
+        label = ring([side.slot_token((v, i), rings)], names)
+        return f"{wname[-1 - v] if v < 0 else vname[v]}.{label}"
 
     out = [f"  {which} {{"]
-    out += _wrap([f"{vname[v]}: {name(h.primitives[p].name)}" for v, p in enumerate(side.vertices)])
+    out += _wrap([f"{vname[v]}: {name(h.primitives[p].name)}" for v, p in enumerate(side.vertices)]
+                 + [f"{wname[e]}: wire {name(names[bd.label_of(t)])}"
+                    for e, t in enumerate(side.wires)])
     out += _wrap([f"{slot(v, i)} -- {slot(w, j)}" for v, i, w, j in side.edges])
     if side.boundary:
         items = [slot(*it) if isinstance(it, tuple) else ("+" if it == bd.UP else "-")

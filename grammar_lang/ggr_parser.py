@@ -550,9 +550,10 @@ class _Builder:
 
     def _side(self, node: Tree, ctx: "_Context") -> Side:
         which, *lines = node.children
-        vertices: list[int] = []
+        vertices: list[int] = []        # primitive of each vertex
+        wires: list[int] = []           # unbarred token of each wire
         names: list[str] = []
-        index: dict[str, int] = {}
+        index: dict[str, int] = {}      # name → vertex v, or -1 - e for wire e (as in slots)
         edges: list[tuple[_Slot, _Slot]] = []
         boundary_nodes: list[Tree] = []
         for line in lines:
@@ -560,21 +561,26 @@ class _Builder:
                 boundary_nodes.append(line)
                 continue
             for item in line.children:
+                if item.data == "edge":
+                    edges.append((self._slot(item.children[0]), self._slot(item.children[1])))
+                    continue
+                vtok, ptok = item.children
+                vname = self.name(vtok)
+                if vname in index:
+                    raise self.fail(f"'{vname}' is declared twice in this side", vtok)
+                if not vname:
+                    raise self.fail("a vertex needs a name", vtok)
                 if item.data == "vertex":
-                    vtok, ptok = item.children
-                    vname = self.name(vtok)
-                    if vname in index:
-                        raise self.fail(f"vertex '{vname}' is declared twice in this side", vtok)
-                    if not vname:
-                        raise self.fail("a vertex needs a name", vtok)
                     prim = self.lookup("primitive", ptok, ctx.prims,
                                        "declare it with a 'primitive' line")
                     index[vname] = len(vertices)
                     vertices.append(prim)
                     names.append(vname)
                 else:
-                    edges.append((self._slot(item.children[0]), self._slot(item.children[1])))
-        if not vertices and not edges and not boundary_nodes:
+                    label = self.lookup("edge label", ptok, ctx.labels)
+                    index[vname] = -1 - len(wires)
+                    wires.append(bd.half(label, False))
+        if not vertices and not wires and not edges and not boundary_nodes:
             return EMPTY
         if len(boundary_nodes) > 1:
             raise self.fail("a side has one boundary line", self._first_token(boundary_nodes[1]))
@@ -582,47 +588,58 @@ class _Builder:
             raise self.fail(f"the {which} has no boundary line", which,
                             "list its open half-edges counter-clockwise with the turns between "
                             "them, e.g. 'boundary a.x + b.y -'; a complete graph has 'boundary +'")
+        label_names = [l.name for l in ctx.header.labels]
+
+        def ring_of(key: int) -> tuple[int, ...]:
+            if key < 0:
+                t = wires[-1 - key]
+                return (t, bd.opposite(t))
+            return ctx.header.primitives[vertices[key]].ring
+
+        def show(key: int, i: int) -> str:
+            vname = next(n for n, k in index.items() if k == key)
+            return f"{vname}.{bd.format_tokens([ring_of(key)[i]], label_names, ascii=True)}"
 
         def resolve(slot: _Slot) -> tuple[int, int]:
-            v = self.lookup("vertex", slot.vertex, index,
-                            "declare it in this side as 'name: primitive'")
-            ring = ctx.header.primitives[vertices[v]].ring
-            pname = ctx.header.primitives[vertices[v]].name
-            shown = bd.format_tokens(ring, [l.name for l in ctx.header.labels], ascii=True)
+            key = self.lookup("vertex", slot.vertex, index,
+                              "declare it in this side as 'name: primitive'")
+            ring = ring_of(key)
+            what = "the wire" if key < 0 else ctx.header.primitives[vertices[key]].name
+            shown = bd.format_tokens(ring, label_names, ascii=True)
             if isinstance(slot.ref, int):
                 if slot.ref >= len(ring):
-                    raise self.fail(f"{pname} has no slot {slot.ref}: its ring has {len(ring)} "
-                                    f"half-edges", slot.span, f"its ring is {shown}, "
-                                    f"slots 0 to {len(ring) - 1}")
-                return v, slot.ref
+                    raise self.fail(f"{what} has no slot {slot.ref}: it has {len(ring)} "
+                                    f"half-edges", slot.span,
+                                    f"its half-edges are {shown}, slots 0 to {len(ring) - 1}")
+                return key, slot.ref
             bar, ltok = slot.ref
             token = bd.half(self.lookup("edge label", ltok, ctx.labels), bar)
             if token not in ring:
-                raise self.fail(f"{self.name(slot.vertex)} ({pname}) has no half-edge "
+                raise self.fail(f"{self.name(slot.vertex)} ({what}) has no half-edge "
                                 f"{'~' if bar else ''}{self.name(ltok)}", slot.span,
-                                f"its ring is {shown}")
-            return v, ring.index(token)
+                                f"its half-edges are {shown}")
+            return key, ring.index(token)
 
-        rings = ctx.rings
         glued: dict[tuple[int, int], Span] = {}
         out_edges = []
         for a, b in edges:
             sa, sb = resolve(a), resolve(b)
             for slot, where in ((sa, a.span), (sb, b.span)):
+                if slot[0] < 0:
+                    raise self.fail("the ends of a wire are open, not glued", where,
+                                    "list both ends of the wire on the boundary")
                 if slot in glued:
                     raise self.fail("this half-edge is glued twice", where,
                                     f"it is already glued on line {glued[slot].line}")
                 glued[slot] = where
-            ta, tb = rings[vertices[sa[0]]][sa[1]], rings[vertices[sb[0]]][sb[1]]
+            ta, tb = ring_of(sa[0])[sa[1]], ring_of(sb[0])[sb[1]]
             if sa == sb:
                 raise self.fail("a half-edge cannot be glued to itself", a.span)
             if tb != bd.opposite(ta):
-                lab = [l.name for l in ctx.header.labels]
-                want = bd.format_tokens([bd.opposite(ta)], lab, ascii=True)
-                raise self.fail(
-                    f"cannot glue {bd.format_tokens([ta], lab, ascii=True)} to "
-                    f"{bd.format_tokens([tb], lab, ascii=True)}", b.span,
-                    f"a half-edge glues only to its opposite: here {want}")
+                want = bd.format_tokens([bd.opposite(ta)], label_names, ascii=True)
+                raise self.fail(f"cannot glue {show(*sa)} to {show(*sb)}", b.span,
+                                f"a half-edge glues only to its opposite: "
+                                f"{show(*sa)} glues to a {want}")
             if sa[0] == sb[0]:
                 raise self.fail("an edge cannot join a vertex to itself", b.span,
                                 "edges are straight lines between two different vertices")
@@ -644,13 +661,11 @@ class _Builder:
                 raise self.fail("this half-edge is on the boundary twice", slot.span)
             seen[s] = slot.span
             items.append(s)
-        missing = [(v, i) for v, p in enumerate(vertices)
-                   for i in range(len(ctx.header.primitives[p].ring))
-                   if (v, i) not in glued and (v, i) not in seen]
+        keys = list(range(len(vertices))) + [-1 - e for e in range(len(wires))]
+        missing = [(k, i) for k in keys for i in range(len(ring_of(k)))
+                   if (k, i) not in glued and (k, i) not in seen]
         if missing:
-            lab = [l.name for l in ctx.header.labels]
-            shown = ", ".join(f"{names[v]}.{bd.format_tokens([rings[vertices[v]][i]], lab, ascii=True)}"
-                              for v, i in missing[:6])
+            shown = ", ".join(show(k, i) for k, i in missing[:6])
             raise self.fail(f"open half-edges missing from the boundary: {shown}"
                             + (" …" if len(missing) > 6 else ""), self._first_token(bnode),
                             "every half-edge that is not glued appears once on the boundary")
@@ -661,7 +676,7 @@ class _Builder:
                             "a closed walk around a graph has one more '+' than '-' (P − N = 1)")
         default = tuple(f"v{k}" for k in range(len(names)))
         return Side(tuple(vertices), tuple(out_edges), tuple(items),
-                    () if tuple(names) == default else tuple(names))
+                    () if tuple(names) == default else tuple(names), tuple(wires))
 
     def _slot(self, node: Tree) -> _Slot:
         vtok, ref = node.children
