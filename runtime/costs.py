@@ -1,0 +1,132 @@
+"""Metropolis costs (paper §6.3, requirement 4): steer the random walk without breaking it.
+
+A cost maps a few counts of a drawing to a number; a proposal that raises it by Δ is accepted
+with probability min(1, exp(−Δ/T)). Costs see `Stats`, which the engine predicts from the
+proposed change before any geometry is solved, so a proposal the cost refuses costs nothing.
+
+Built in (`--cost NAME[:ARG[:ARG]]`):
+- `size[:N]`: stay near N vertices (default: the number of steps asked for);
+- `density:D`: about D vertices per unit² of the drawing's bounding box;
+- `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
+- `none`: accept every placeable proposal.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Protocol
+
+from grammar_lang.diagnostics import error
+
+
+@dataclass(frozen=True)
+class Stats:
+    vertices: int
+    edges: int
+    label_count: tuple[int, ...]
+    area: float                # bounding-box area in unit², from the spatial grid's cells
+
+
+class Cost(Protocol):
+    name: str
+
+    def value(self, s: Stats) -> float: ...
+
+
+@dataclass(frozen=True)
+class NoCost:
+    name: str = "none"
+
+    def value(self, s: Stats) -> float:
+        return 0.0
+
+
+@dataclass(frozen=True)
+class SizeCost:
+    target: int
+    name: str = "size"
+
+    def value(self, s: Stats) -> float:
+        return float(abs(s.vertices - self.target))
+
+
+@dataclass(frozen=True)
+class DensityCost:
+    per_unit2: float
+    name: str = "density"
+
+    def value(self, s: Stats) -> float:
+        return abs(s.vertices - self.per_unit2 * s.area)
+
+
+@dataclass(frozen=True)
+class LabelCost:
+    label: int
+    fraction: float
+    name: str = "label"
+
+    def value(self, s: Stats) -> float:
+        return abs(s.label_count[self.label] - self.fraction * s.edges)
+
+
+def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
+    """Accept with probability min(1, exp(−Δ/T)); `u` is a uniform draw in [0, 1)."""
+    if delta <= 0:
+        return True
+    if temperature <= 0:
+        return False
+    return u < math.exp(-delta / temperature)
+
+
+def parse_cost(spec: str | None, label_names, default_size: int) -> Cost:
+    """Parse `--cost NAME[:ARG[:ARG]]`; user errors carry a hint."""
+    if spec is None:
+        return SizeCost(default_size)
+    name, *args = spec.split(":")
+    makers: dict[str, Callable[[list[str]], Cost]] = {
+        "none": lambda a: NoCost(),
+        "size": lambda a: SizeCost(_int(a[0], spec) if a else default_size),
+        "density": lambda a: DensityCost(_float(a[0], spec)),
+        "label": lambda a: _label(a, label_names, spec),
+    }
+    if name not in makers:
+        from grammar_lang.diagnostics import did_you_mean
+        raise error(f"unknown cost '{name}'", None,
+                    did_you_mean(name, makers) or "costs: " + ", ".join(sorted(makers)))
+    if name == "density" and not args:
+        raise error("cost 'density' needs a target", None, "write e.g. --cost density:0.5")
+    if name == "label" and not args:
+        raise error("cost 'label' needs an edge label", None, "write e.g. --cost label:x:0.3")
+    return makers[name](args)
+
+
+def _label(args: list[str], names, spec: str) -> Cost:
+    if args[0] not in names:
+        from grammar_lang.diagnostics import did_you_mean
+        raise error(f"--cost {spec}: no edge label '{args[0]}'", None,
+                    did_you_mean(args[0], names) or "labels: " + ", ".join(names))
+    f = _float(args[1], spec) if len(args) > 1 else 0.5
+    if not 0 <= f <= 1:
+        raise error(f"--cost {spec}: the fraction must be between 0 and 1")
+    return LabelCost(list(names).index(args[0]), f)
+
+
+def _int(text: str, spec: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise error(f"--cost {spec}: '{text}' is not a whole number") from None
+    if v < 0:
+        raise error(f"--cost {spec}: the target must not be negative")
+    return v
+
+
+def _float(text: str, spec: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise error(f"--cost {spec}: '{text}' is not a number") from None
+    if not math.isfinite(v) or v < 0:
+        raise error(f"--cost {spec}: '{text}' must be a finite number ≥ 0")
+    return v

@@ -1,0 +1,238 @@
+"""Algorithm 3: grow a drawing by proposing rewrites and placing them (paper §6).
+
+`Engine` holds the host drawing, the random generator and the history; one `step()` picks a
+move and a match through the schedule, asks the cost whether to try it (Metropolis, on the
+predicted counts), solves for positions (geometry.Solver: I rounds of J samples), commits the
+first placement whose faces are labelled consistently, and records the journal so the step can
+be undone and redone. The REPL drives the same engine one operation at a time (`matches`,
+`apply`, `undo`, `redo`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from grammar_lang.rules import Grammar
+
+from .costs import Cost, NoCost, Stats, metropolis_accepts
+from .geometry import I_ROUNDS, J_SAMPLES, Solver
+from .host import Host, Point
+from .matching import Match, iter_matches
+from .rewrite import Change, DirectedRule, commit, plan
+from .schedule import Schedule
+
+# Stop after this many proposals in a row that could not be placed or were refused.
+MAX_STALL = 500
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """An applied step: enough to undo and redo it exactly."""
+
+    rule: str
+    forward: bool
+    priority: int
+    ops: tuple[tuple, ...]
+    added: tuple[int, ...]
+    removed: tuple[int, ...]
+    moved: tuple[int, ...]
+
+
+@dataclass
+class Outcome:
+    applied: StepRecord | None
+    reason: str = ""                  # why not applied: 'cost', a geometry failure, 'terminal'
+
+
+@dataclass
+class Summary:
+    applied: int = 0
+    rejected: int = 0
+    proposals: int = 0
+    seconds: float = 0.0
+    stop: str = ""
+    reasons: dict[str, int] = field(default_factory=dict)
+    vertices: int = 0
+    edges: int = 0
+
+
+class Engine:
+    def __init__(self, grammar: Grammar, seed: int = 0, cost: Cost | None = None,
+                 temperature: float = 1.0, I: int = I_ROUNDS, J: int = J_SAMPLES,
+                 bidirectional: bool | None = None, limits: dict[int, int] | None = None):
+        self.grammar = grammar
+        self.schedule = Schedule.build(grammar, bidirectional, limits)
+        self.cost = cost or NoCost()
+        self.temperature = temperature
+        self.I, self.J = I, J
+        self.reset(seed)
+
+    def reset(self, seed: int) -> None:
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+        self.host = Host(self.grammar.header)
+        self.history: list[StepRecord] = []
+        self.redo_stack: list[StepRecord] = []
+        self.applied_by_level: dict[int, int] = {}
+
+    # --- looking ----------------------------------------------------------------------------
+    def stats(self, change: Change | None = None) -> Stats:
+        h = self.host
+        nv, ne, counts = len(h), h.n_edges, list(h.label_count)
+        if change is not None:
+            nv += len(change.new) - len(change.removed)
+            seen = set()
+            for v in change.removed:
+                for i, s in enumerate(h.link[v]):
+                    if s is not None and min((v, i), s) not in seen:
+                        seen.add(min((v, i), s))
+                        ne -= 1
+                        counts[h.t.label[h.prim[v]][i]] -= 1
+            prims = dict(change.new)
+            for (v, i), _ in change.glue:
+                ne += 1
+                p = prims.get(v, h.prim.get(v))
+                counts[h.t.label[p][i]] += 1
+        b = h.grid.bounds()
+        area = 0.0 if b is None else (b[2] - b[0]) * (b[3] - b[1]) / h.t.unit ** 2
+        return Stats(nv, ne, tuple(counts), area)
+
+    def moves(self) -> list[DirectedRule]:
+        return self.schedule.moves()
+
+    def matches(self, move: DirectedRule, limit: int | None = None) -> list[Match]:
+        out = []
+        for m in iter_matches(self.host, move.pattern, self.schedule.spo):
+            out.append(m)
+            if limit is not None and len(out) >= limit:
+                break
+        return out
+
+    # --- doing ------------------------------------------------------------------------------
+    def step(self) -> Outcome:
+        choice = self.schedule.choose(self.host, self.rng, self.applied_by_level)
+        if choice is None:
+            return Outcome(None, "terminal")
+        level, move, match = choice
+        return self.apply(move, match, priority=level.priority)
+
+    def apply(self, move: DirectedRule, match: Match, priority: int | None = None,
+              use_cost: bool = True) -> Outcome:
+        host = self.host
+        change = plan(host, move, match, self.schedule.spo)
+        if use_cost:
+            delta = self.cost.value(self.stats(change)) - self.cost.value(self.stats())
+            if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
+                return Outcome(None, "cost")
+        solver = Solver(host, change, self.rng, self._center(change), self.I, self.J)
+        region = [host.pos[v] for v in change.removed]
+        region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
+        for placement in solver.placements():
+            moved = tuple(sorted(v for v in placement.positions if v in host.prim))
+            pts = region + [host.pos[v] for v in moved] + list(placement.positions.values())
+            ops = commit(host, change, placement.positions)
+            if self._faces_ok(placement.positions, pts):
+                rec = StepRecord(move.rule.name, move.forward,
+                                 move.rule.priority if priority is None else priority,
+                                 tuple(ops), tuple(v for v, _ in change.new), change.removed,
+                                 moved)
+                self.history.append(rec)
+                self.redo_stack.clear()
+                lv = rec.priority
+                self.applied_by_level[lv] = self.applied_by_level.get(lv, 0) + 1
+                return Outcome(rec)
+            host.undo_ops(ops)
+            solver._fail("face labels")
+        why = max(sorted(solver.failures), key=lambda k: solver.failures[k]) \
+            if solver.failures else "no placement"
+        return Outcome(None, why)
+
+    def undo(self) -> StepRecord | None:
+        if not self.history:
+            return None
+        rec = self.history.pop()
+        self.host.undo_ops(list(rec.ops))
+        self.applied_by_level[rec.priority] -= 1
+        self.redo_stack.append(rec)
+        return rec
+
+    def redo(self) -> StepRecord | None:
+        if not self.redo_stack:
+            return None
+        rec = self.redo_stack.pop()
+        self.host.redo_ops(list(rec.ops))
+        self.applied_by_level[rec.priority] = self.applied_by_level.get(rec.priority, 0) + 1
+        self.history.append(rec)
+        return rec
+
+    def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
+            every: int = 50) -> Summary:
+        """Apply up to `steps` steps; stops early on a terminal drawing or a stall."""
+        s = Summary()
+        t0 = time.perf_counter()
+        stall = 0
+        while s.applied < steps:
+            out = self.step()
+            if out.reason == "terminal":
+                s.stop = "no rule applies (the drawing is terminal)"
+                break
+            s.proposals += 1
+            if out.applied is not None:
+                s.applied += 1
+                stall = 0
+            else:
+                s.rejected += 1
+                s.reasons[out.reason] = s.reasons.get(out.reason, 0) + 1
+                stall += 1
+                if stall >= MAX_STALL:
+                    common = max(sorted(s.reasons), key=lambda k: s.reasons[k])
+                    s.stop = (f"stalled: {MAX_STALL} proposals in a row were rejected "
+                              f"(most often: {common})")
+                    break
+            if progress is not None and s.proposals % every == 0:
+                s.seconds = time.perf_counter() - t0
+                s.vertices, s.edges = len(self.host), self.host.n_edges
+                progress(s)
+        if not s.stop:
+            s.stop = f"reached {steps} steps"
+        s.seconds = time.perf_counter() - t0
+        s.vertices, s.edges = len(self.host), self.host.n_edges
+        return s
+
+    # --- helpers ----------------------------------------------------------------------------
+    def _center(self, change: Change) -> Point:
+        """Where the change happens: the replaced part, else its context, else somewhere new."""
+        host = self.host
+        pts = [host.pos[v] for v in change.removed]
+        if not pts:
+            pts = [host.pos[b[0]] for _, b in change.glue if b[0] in host.prim]
+        if pts:
+            return (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
+        n = len(host)
+        if n == 0:
+            return (0.0, 0.0)
+        # A new component: near a random vertex, a few units away in a random direction.
+        k = int(self.rng.integers(n))
+        for lst in host.by_prim:
+            if k < len(lst):
+                base = host.pos[lst[k]]
+                break
+            k -= len(lst)
+        ang = float(self.rng.random()) * 2 * math.pi
+        r = host.t.unit * (1.0 + 2.0 * float(self.rng.random()))
+        return (base[0] + r * math.cos(ang), base[1] + r * math.sin(ang))
+
+    def _faces_ok(self, placed: dict[int, Point], pts: list[Point]) -> bool:
+        host = self.host
+        todo = set(placed)
+        if pts:
+            pad = host.t.unit
+            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+            todo.update(host.grid.points_near(min(xs) - pad, min(ys) - pad,
+                                              max(xs) + pad, max(ys) + pad))
+        return all(host.face_ok(v) for v in sorted(todo) if v in host.prim)

@@ -1,0 +1,266 @@
+"""Positions for a proposed change: Algorithm 3's inner loops (paper §6.2–6.3).
+
+Every edge's direction is fixed by its label, so for the free vertices F and every edge e = uv
+touching them, `p_v − p_u − s_e d_e = 0` with the length s_e unknown: a linear system A x = b
+over positions and lengths, the fixed vertices moving to b. Its solutions are x̂ + K λ.
+
+A sample is drawn by projecting a random target onto that affine space: target lengths are drawn
+from the edge class's range (or kept, for edges that already exist) and target positions are
+the place the change happens (or kept, for old vertices); the projection is a weighted least
+squares step, so old vertices move least and new ones most. Projecting a random point onto the
+space samples it as the null-space form does, without forming K. Samples whose lengths break
+their class (min/max, fixed, tile multiples, rigid), whose edges cross or touch others, or
+whose vertices coincide are rejected: J samples per system. When the system is inconsistent
+(over-constrained) or J samples fail, one more vertex next to a free one is freed: I rounds.
+
+Only the changed neighbourhood enters the system and the spatial grid answers the crossing
+tests, so a step's cost does not grow with the drawing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterator
+
+import numpy as np
+
+from .host import Host, Point
+from .rewrite import Change
+from .spatial import seg_distance
+
+I_ROUNDS, J_SAMPLES = 5, 10
+# Column scales of the weighted projection: a larger scale is cheaper to move.
+NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
+
+
+@dataclass(frozen=True)
+class Placement:
+    positions: dict[int, Point]      # new and moved vertices
+    freed: tuple[int, ...]            # old vertices that were allowed to move
+    rounds: int                       # I-rounds used (1 = only new vertices were free)
+
+
+class Solver:
+    def __init__(self, host: Host, change: Change, rng: np.random.Generator,
+                 center: Point, I: int = I_ROUNDS, J: int = J_SAMPLES):
+        self.host, self.change, self.rng = host, change, rng
+        self.center, self.I, self.J = center, I, J
+        self.new_prim = dict(change.new)
+        self.removed = set(change.removed)
+        u = host.t.unit
+        self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
+        self.clearance = max(self.clearance, 1e-9 * u)
+        self.failures: dict[str, int] = {}
+        # New edges between two old vertices (a wire replaced): constraints from the start.
+        self.bridges = [(a, b) for a, b in change.glue
+                        if a[0] not in self.new_prim and b[0] not in self.new_prim]
+
+    def prim(self, v: int) -> int:
+        p = self.new_prim.get(v)
+        return self.host.prim[v] if p is None else p
+
+    def adjacency(self, v: int):
+        return self.change.adjacency(self.host, v, self.prim(v))
+
+    def _fail(self, why: str) -> None:
+        self.failures[why] = self.failures.get(why, 0) + 1
+
+    def placements(self) -> Iterator[Placement]:
+        """Candidate placements that pass every local test, at most I·J of them."""
+        host = self.host
+        free = [v for v, _ in self.change.new]
+        if not free and not self.bridges:
+            yield Placement({}, (), 1)
+            return
+        for rnd in range(1, self.I + 1):
+            system = self._system(free)
+            if system is None:
+                self._fail("over-constrained")
+            else:
+                for _ in range(self.J):
+                    pos = self._sample(free, *system)
+                    if pos is not None:
+                        freed = tuple(v for v in free if v in host.prim)
+                        yield Placement(pos, freed, rnd)
+            if rnd == self.I or not self._free_one(free):
+                return
+
+    def _free_one(self, free: list[int]) -> bool:
+        fs = set(free)
+        near = {w for v in free for _, (w, _) in self.adjacency(v)}
+        near.update(s[0] for pair in self.bridges for s in pair)
+        cands = sorted(near - fs)
+        if not cands:
+            return False
+        free.append(cands[int(self.rng.integers(len(cands)))])
+        return True
+
+    # --- the linear system ------------------------------------------------------------------
+    def _system(self, free: list[int]):
+        host, t = self.host, self.host.t
+        idx = {v: k for k, v in enumerate(free)}
+        edges, seen = [], set()
+        for v in free:
+            pv = self.prim(v)
+            for i, (w, j) in self.adjacency(v):
+                key = min((v, i), (w, j))
+                if key in seen:
+                    continue
+                seen.add(key)
+                edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        for (v, i), (w, j) in self.bridges:
+            if v not in idx and w not in idx:
+                pv = host.prim[v]
+                edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        nF, nE = len(free), len(edges)
+        nfix = sum(1 for e in edges if t.lengths[e[5]][2] is not None)
+        A = np.zeros((2 * nE + nfix, 2 * nF + nE))
+        b = np.zeros(2 * nE + nfix)
+        r = 2 * nE
+        for e, (v, i, w, j, d, lab) in enumerate(edges):
+            for c in (0, 1):
+                row = 2 * e + c
+                if w in idx:
+                    A[row, 2 * idx[w] + c] += 1.0
+                else:
+                    b[row] -= host.pos[w][c]
+                if v in idx:
+                    A[row, 2 * idx[v] + c] -= 1.0
+                else:
+                    b[row] += host.pos[v][c]
+                A[row, 2 * nF + e] = -d[c]
+            fixed = t.lengths[lab][2]
+            if fixed is not None:
+                A[r, 2 * nF + e] = 1.0
+                b[r] = fixed
+                r += 1
+        scale = np.empty(2 * nF + nE)
+        for v, k in idx.items():
+            scale[2 * k:2 * k + 2] = OLD_POS if v in host.prim else NEW_POS
+        scale[2 * nF:] = LENGTH
+        M = A * scale
+        Mp = np.linalg.pinv(M, rcond=1e-10)
+        res = b - M @ (Mp @ b)
+        if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
+            return None
+        return edges, A, b, scale, Mp
+
+    def _targets(self, free, edges) -> np.ndarray:
+        host, t, rng = self.host, self.host.t, self.rng
+        u = t.unit
+        nF = len(free)
+        x = np.empty(2 * nF + len(edges))
+        noise = rng.normal(0.0, 0.5 * u, size=2 * nF)
+        for k, v in enumerate(free):
+            p = host.pos.get(v)
+            if p is None:
+                x[2 * k], x[2 * k + 1] = self.center[0] + noise[2 * k], self.center[1] + noise[2 * k + 1]
+            else:
+                x[2 * k], x[2 * k + 1] = p
+        draws = rng.random(len(edges))
+        for e, (v, i, w, j, d, lab) in enumerate(edges):
+            lo, hi, fixed, tile = t.lengths[lab]
+            if fixed is not None:
+                x[2 * nF + e] = fixed
+            elif v in host.prim and host.link[v][i] == (w, j):
+                pv, pw = host.pos[v], host.pos[w]
+                x[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
+            else:
+                a, bb = max(lo, 0.5 * u), min(hi, 1.5 * u)
+                if a > bb:
+                    a, bb = lo, hi
+                x[2 * nF + e] = a + (bb - a) * draws[e]
+        return x
+
+    def _sample(self, free, edges, A, b, scale, Mp) -> dict[int, Point] | None:
+        t = self.host.t
+        target = self._targets(free, edges)
+        x = target + scale * (Mp @ (b - A @ target))
+        nF = len(free)
+        s = x[2 * nF:]
+        tiles = [(e, t.lengths[lab][3]) for e, (*_, lab) in enumerate(edges)
+                 if t.lengths[lab][3] and t.lengths[lab][2] is None]
+        if tiles:
+            x = self._snap_tiles(x, nF, tiles, A, b)
+            if x is None:
+                self._fail("tile lengths")
+                return None
+            s = x[2 * nF:]
+        tol = 1e-7 * t.unit
+        for e, (*_, lab) in enumerate(edges):
+            lo, hi, _, _ = t.lengths[lab]
+            if not (s[e] > tol and lo - tol <= s[e] <= hi + tol):
+                self._fail("edge length")
+                return None
+        pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
+        if not self._planar(pos, edges):
+            return None
+        return pos
+
+    def _snap_tiles(self, x, nF, tiles, A, b):
+        """Round tiled lengths to whole multiples and solve again with them pinned."""
+        rows, vals = [], []
+        for e, tile in tiles:
+            k = max(1, round(float(x[2 * nF + e]) / tile))
+            row = np.zeros(A.shape[1])
+            row[2 * nF + e] = 1.0
+            rows.append(row)
+            vals.append(k * tile)
+        A2 = np.vstack([A, np.array(rows)])
+        b2 = np.concatenate([b, vals])
+        # The nearest point to the sample that also meets the pins.
+        y = x + np.linalg.pinv(A2, rcond=1e-10) @ (b2 - A2 @ x)
+        if float(np.abs(A2 @ y - b2).max()) > 1e-7 * self.host.t.unit * (1 + float(np.abs(b2).max()) / self.host.t.unit):
+            return None
+        return y
+
+    # --- planarity --------------------------------------------------------------------------
+    def _planar(self, pos: dict[int, Point], edges) -> bool:
+        host = self.host
+        clr = self.clearance
+        gone = self.removed | {v for v in pos if v in host.prim}
+        ignore = {min(s, host.link[s[0]][s[1]]) for s in self.change.cut}
+        for v in gone:
+            for i, s in enumerate(host.link[v]):
+                if s is not None:
+                    ignore.add(min((v, i), s))
+
+        def at(v):
+            p = pos.get(v)
+            return host.pos[v] if p is None else p
+
+        segs = [(v, w, at(v), at(w)) for v, _, w, _, _, _ in edges]
+        # Vertices: no two may coincide.
+        pts = sorted(pos.items())
+        for k, (v, p) in enumerate(pts):
+            for q in host.grid.points_near(p[0] - clr, p[1] - clr, p[0] + clr, p[1] + clr):
+                if q not in gone and _dist(p, host.pos[q]) < clr:
+                    self._fail("coincident vertices")
+                    return False
+            for w, p2 in pts[k + 1:]:
+                if _dist(p, p2) < clr:
+                    self._fail("coincident vertices")
+                    return False
+        # Edges: no crossing or touching except at a shared end.
+        for k, (v, w, a, c) in enumerate(segs):
+            near = host.grid.segments_near(min(a[0], c[0]) - clr, min(a[1], c[1]) - clr,
+                                           max(a[0], c[0]) + clr, max(a[1], c[1]) + clr)
+            for key in sorted(near - ignore):
+                x, i = key
+                y = host.link[x][i][0]
+                if x in (v, w) or y in (v, w):
+                    continue
+                if seg_distance(a, c, host.pos[x], host.pos[y]) < clr:
+                    self._fail("crossing")
+                    return False
+            for v2, w2, a2, c2 in segs[k + 1:]:
+                if v2 in (v, w) or w2 in (v, w):
+                    continue
+                if seg_distance(a, c, a2, c2) < clr:
+                    self._fail("crossing")
+                    return False
+        return True
+
+
+def _dist(p: Point, q: Point) -> float:
+    return ((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2) ** 0.5

@@ -1,0 +1,256 @@
+"""Anchored matching of a rule side in the host.
+
+A vertex's primitive fixes its whole ring, so once one pattern vertex is mapped to a host vertex
+of the same primitive, following the pattern's glued slots through the host's links maps every
+other vertex of that component, or fails, in time linear in the pattern (paper §6.1). Matching
+starts from the pattern's primitive with the fewest host instances and never scans the drawing:
+a random match tries candidates from a random offset of that primitive's index, and the
+components of a spliced side after the first are looked for near the first, through the grid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterator
+
+import numpy as np
+
+from grammar_lang.graph import Side, Slot
+
+from .host import Host
+from .spatial import seg_distance
+
+# How far (in units) the components of a spliced side may lie from each other.
+SPLICE_RADIUS = 4.0
+
+
+@dataclass(frozen=True)
+class Component:
+    vertices: tuple[int, ...]
+    # For each possible anchor vertex: the walk that maps the rest, as (u, i, w, j) steps: from
+    # mapped u follow slot i to a host slot that must be (h, j) with h a w-primitive vertex.
+    plans: tuple[tuple[tuple[int, int, int, int], ...], ...]
+
+
+@dataclass(frozen=True)
+class Pattern:
+    side: Side
+    components: tuple[Component, ...]
+    open_slots: tuple[Slot, ...]                 # boundary order; wire ends are (-1 - e, end)
+    splices: tuple[tuple[Slot, Slot], ...]      # consecutive open slots of different components
+    # A wire (bare edge) matches a host edge of its label: per wire, the (primitive, slot)
+    # pairs where its end-0 partner, a barred half-edge, can sit.
+    wire_slots: tuple[tuple[tuple[int, int], ...], ...] = ()
+
+    @staticmethod
+    def build(side: Side, rings=()) -> "Pattern":
+        partner = side.partner()
+        comps = []
+        for verts in side.components():
+            plans = []
+            for anchor in verts:
+                steps, seen, queue = [], {anchor}, [anchor]
+                done_edges = set()
+                while queue:
+                    u = queue.pop(0)
+                    ring_len = _ring_len(side, u, partner)
+                    for i in range(ring_len):
+                        s = partner.get((u, i))
+                        if s is None:
+                            continue
+                        key = min((u, i), s)
+                        if key in done_edges:
+                            continue
+                        done_edges.add(key)
+                        steps.append((u, i, s[0], s[1]))
+                        if s[0] not in seen:
+                            seen.add(s[0])
+                            queue.append(s[0])
+                plans.append(tuple(steps))
+            comps.append(Component(tuple(verts), tuple(plans)))
+        opens = tuple(side.open_slots())
+        comp_of = {v: k for k, c in enumerate(comps) for v in c.vertices}
+        splices = []
+        for a, b in zip(opens, opens[1:] + opens[:1]):
+            # Splices to a wire are left to the geometric tests of the placement.
+            if a[0] >= 0 and b[0] >= 0 and comp_of[a[0]] != comp_of[b[0]]:
+                splices.append((a, b))
+        wire_slots = tuple(
+            tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
+            for tok in side.wires)
+        return Pattern(side, tuple(comps), opens, tuple(splices), wire_slots)
+
+
+def _ring_len(side: Side, u: int, partner: dict) -> int:
+    # The side does not carry rings; the largest slot index used bounds the walk.
+    used = [i for (v, i) in partner if v == u]
+    return max(used) + 1 if used else 0
+
+
+@dataclass(frozen=True)
+class Match:
+    """Host vertex of each pattern vertex, and host edge of each wire as (end-0 partner,
+    end-1 partner): the barred and the unbarred host slot of that edge."""
+
+    vmap: tuple[int, ...]
+    wmap: tuple[tuple[Slot, Slot], ...] = ()
+
+    def partner_of(self, host: Host, s: Slot) -> Slot | None:
+        """The host slot an open slot of the pattern is glued to."""
+        if s[0] < 0:
+            return self.wmap[-1 - s[0]][s[1]]
+        return host.link[self.vmap[s[0]]][s[1]]
+
+
+def _extend(host: Host, side: Side, steps, anchor: int, h: int, vmap: dict) -> bool:
+    link, prim = host.link, host.prim
+    want = side.vertices
+    if prim[h] != want[anchor] or h in vmap.values():
+        return False
+    vmap[anchor] = h
+    used = set(vmap.values())
+    for u, i, w, j in steps:
+        s = link[vmap[u]][i]
+        if s is None or s[1] != j:
+            return False
+        x = s[0]
+        if w in vmap:
+            if vmap[w] != x:
+                return False
+        else:
+            if prim[x] != want[w] or x in used:
+                return False
+            vmap[w] = x
+            used.add(x)
+    return True
+
+
+def _glue_ok(host: Host, pattern: Pattern, vmap: dict, spo: bool) -> bool:
+    """DPO dangling condition: an interface slot must not be glued into the match itself."""
+    if spo:
+        return True
+    image = set(vmap.values())
+    for v, i in pattern.open_slots:
+        if v < 0:
+            continue
+        s = host.link[vmap[v]][i]
+        if s is not None and s[0] in image:
+            return False
+    return True
+
+
+def _visible(host: Host, a: int, b: int) -> bool:
+    """No host edge crosses the straight segment between vertices a and b."""
+    pa, pb = host.pos[a], host.pos[b]
+    eps = 1e-9 * host.t.unit
+    for key in sorted(host.grid.segments_near(min(pa[0], pb[0]), min(pa[1], pb[1]),
+                                              max(pa[0], pb[0]), max(pa[1], pb[1]))):
+        v, i = key
+        w = host.link[v][i][0]
+        if a in (v, w) or b in (v, w):
+            continue
+        if seg_distance(pa, pb, host.pos[v], host.pos[w]) <= eps:
+            return False
+    return True
+
+
+def _anchor(host: Host, pattern: Pattern, comp: Component) -> int:
+    """Index into comp.vertices of the vertex whose primitive is rarest in the host."""
+    counts = [len(host.by_prim[pattern.side.vertices[v]]) for v in comp.vertices]
+    return min(range(len(counts)), key=lambda k: (counts[k], k))
+
+
+def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
+                     near: dict | None):
+    prim = pattern.side.vertices[comp.vertices[k]]
+    if near is None:
+        return host.by_prim[prim]
+    # Later components of a splice: only vertices near the part already matched.
+    return [h for h in _comp_candidates_any(host, near) if host.prim[h] == prim]
+
+
+def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
+            rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
+    if ci == len(pattern.components):
+        if _glue_ok(host, pattern, vmap, spo) and all(
+                _visible(host, vmap[a[0]], vmap[b[0]]) for a, b in pattern.splices):
+            yield from _search_wires(host, pattern, 0, vmap, (), rng)
+        return
+    comp = pattern.components[ci]
+    k = _anchor(host, pattern, comp)
+    cands = _comp_candidates(host, pattern, comp, k, vmap if ci else None)
+    n = len(cands)
+    if n == 0:
+        return
+    if rng is None:
+        order = sorted(cands)
+    else:
+        start = int(rng.integers(n))
+        order = (cands[(start + m) % n] for m in range(n))
+    anchor = comp.vertices[k]
+    for h in order:
+        trial = dict(vmap)
+        if _extend(host, pattern.side, comp.plans[k], anchor, h, trial):
+            yield from _search(host, pattern, ci + 1, trial, spo, rng)
+
+
+def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tuple,
+                  rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
+    if wi == len(pattern.wire_slots):
+        yield vmap, wires
+        return
+    image = set(vmap.values())
+    taken = {s for pair in wires for s in pair}
+    lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[wi]]
+    if vmap and rng is not None:
+        # Beside matched vertices, look for the wire nearby only.
+        near = set(_comp_candidates_any(host, vmap))
+        lists = [(i, [h for h in lst if h in near]) for i, lst in lists]
+    total = sum(len(l) for _, l in lists)
+    if total == 0:
+        return
+    start = 0 if rng is None else int(rng.integers(total))
+    for m in range(total):
+        k = (start + m) % total
+        for i, lst in lists:
+            if k < len(lst):
+                h = lst[k]
+                break
+            k -= len(lst)
+        s1 = host.link[h][i]
+        s0 = (h, i)
+        if s1 is None or h in image or s1[0] in image or s0 in taken:
+            continue
+        yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng)
+
+
+def _comp_candidates_any(host: Host, near: dict) -> list[int]:
+    xs = [host.pos[h][0] for h in near.values()]
+    ys = [host.pos[h][1] for h in near.values()]
+    r = SPLICE_RADIUS * host.t.unit
+    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r)
+
+
+def _match(pattern: Pattern, found) -> Match:
+    vmap, wires = found
+    return Match(tuple(vmap[v] for v in range(len(pattern.side.vertices))), wires)
+
+
+def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
+               spo: bool = False) -> Match | None:
+    """A random match, or None when there is none."""
+    for found in _search(host, pattern, 0, {}, spo, rng):
+        return _match(pattern, found)
+    return None
+
+
+def iter_matches(host: Host, pattern: Pattern, spo: bool = False) -> Iterator[Match]:
+    """Every match, in a deterministic order (ascending anchor vertex ids)."""
+    seen = set()
+    for found in _search(host, pattern, 0, {}, spo, None):
+        m = _match(pattern, found)
+        # Automorphic images of the same vertex set are distinct matches; only exact
+        # duplicates (found through two anchors) are dropped.
+        if (m.vmap, m.wmap) not in seen:
+            seen.add((m.vmap, m.wmap))
+            yield m

@@ -1,0 +1,183 @@
+"""`ggrun FILE`: grow drawings from a grammar and write them as SVG or gg-drawing/1 JSON."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from grammar_lang.diagnostics import Span, error
+from grammar_lang.rules import Grammar
+
+from .costs import parse_cost
+from .generate import Engine, Summary
+
+DEFAULT_STEPS = 200
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--steps", type=int, default=DEFAULT_STEPS, metavar="N",
+                   help=f"rule applications per drawing (default {DEFAULT_STEPS})")
+    p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
+    p.add_argument("--out", metavar="PATH",
+                   help="output file, .svg or .json by extension (default: FILE's name + .svg)")
+    p.add_argument("--count", type=int, default=1, metavar="K",
+                   help="write K drawings with seeds S…S+K−1, named PATH-0001.svg …")
+    p.add_argument("--jobs", type=int, default=1, metavar="N", help="parallel processes")
+    p.add_argument("--cost", metavar="NAME[:ARGS]",
+                   help="Metropolis cost: size[:N] (default, N = steps), density:D, "
+                        "label:NAME[:F], none")
+    p.add_argument("--temperature", type=float, default=1.0, metavar="T",
+                   help="Metropolis temperature (default 1; 0 refuses every cost increase)")
+    p.add_argument("--limit", action="append", default=[], metavar="PRIORITY=N",
+                   help="at most N applied steps at that priority level (repeatable)")
+    p.add_argument("--direction", choices=("both", "forward"),
+                   help="use rules in both directions (default for compiled grammars) or "
+                        "forward only (default for spo rule files)")
+    p.add_argument("--quiet", action="store_true", help="no progress display or summary")
+
+
+@dataclass(frozen=True)
+class Job:
+    grammar: Grammar
+    seed: int
+    steps: int
+    cost: str | None
+    temperature: float
+    limits: tuple[tuple[int, int], ...]
+    bidirectional: bool | None
+    out: str
+    name: str
+
+
+def load_grammar(path: str) -> Grammar:
+    p = Path(path)
+    suffix = p.suffix.lower()
+    if suffix == ".ggr":
+        from grammar_lang.ggr_parser import load_ggr
+        return load_ggr(p)
+    if suffix in (".gg", ".svg"):
+        return _compile_in_memory(p)
+    raise error(f"don't know how to read '{p.name}'", Span(str(p)),
+                "give a grammar (.ggr) or an example (.gg, .svg)")
+
+
+def _compile_in_memory(p: Path) -> Grammar:
+    # runtime never imports compiler statically (they are separate layers that ship in one
+    # distribution); the compiler's entry point is looked up only when an example is given.
+    try:
+        infer = importlib.import_module("compiler.infer")
+        compile_example = infer.compile_example
+    except (ImportError, AttributeError):
+        raise error(f"cannot compile '{p.name}' in memory: this installation has no "
+                    "compiler.infer.compile_example", Span(str(p)),
+                    f"compile it first: 'ggc {p.name}', then run 'ggrun' on the .ggr") from None
+    from grammar_lang.loader import load_example
+    return compile_example(load_example(p))
+
+
+def _parse_limits(items: list[str]) -> tuple[tuple[int, int], ...]:
+    out = {}
+    for item in items:
+        try:
+            k, v = item.split("=")
+            out[int(k)] = int(v)
+        except ValueError:
+            raise error(f"--limit {item}: expected PRIORITY=N", None,
+                        "write e.g. --limit 0=100 (at most 100 steps at priority 0)") from None
+        if out[int(k)] < 0:
+            raise error(f"--limit {item}: the limit must not be negative")
+    return tuple(sorted(out.items()))
+
+
+def output_paths(out: str, count: int) -> list[str]:
+    p = Path(out)
+    if count == 1:
+        return [str(p)]
+    return [str(p.with_name(f"{p.stem}-{k + 1:04d}{p.suffix}")) for k in range(count)]
+
+
+def run_job(job: Job, progress=None) -> Summary:
+    """Generate one drawing and write it; runs in a worker process for --jobs."""
+    engine = Engine(job.grammar, job.seed,
+                    parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
+                    job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits))
+    summary = engine.run(job.steps, progress)
+    drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
+                                      "steps": summary.applied})
+    write_drawing(drawing, job.grammar, job.out)
+    return summary
+
+
+def write_drawing(drawing, grammar: Grammar, path: str) -> None:
+    if path.lower().endswith(".json"):
+        drawing.save(path)
+        return
+    from .svg_out import write_svg
+    write_svg(drawing, grammar.header, path)
+
+
+def run_command(args: argparse.Namespace) -> int:
+    if args.file is None:
+        raise error("no grammar given", None, "run 'ggrun FILE.ggr', or 'ggrun --help'")
+    for flag in ("steps", "count", "jobs"):
+        if getattr(args, flag) < (0 if flag == "steps" else 1):
+            raise error(f"--{flag} {getattr(args, flag)} is out of range", None,
+                        f"--{flag} takes a whole number of at least {0 if flag == 'steps' else 1}")
+    out = args.out or str(Path(Path(args.file).name).with_suffix(".svg"))
+    if Path(out).suffix.lower() not in (".svg", ".json"):
+        raise error(f"--out {out}: unknown output format", None,
+                    "end the name with .svg or .json")
+    grammar = load_grammar(args.file)
+    # Validate the cost spec once, before any work.
+    parse_cost(args.cost, [l.name for l in grammar.header.labels], args.steps)
+    both = None if args.direction is None else args.direction == "both"
+    jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
+                _parse_limits(args.limit), both, path, Path(args.file).name)
+            for k, path in enumerate(output_paths(out, args.count))]
+    show = not args.quiet
+    summaries: list[Summary]
+    if args.jobs > 1 and len(jobs) > 1:
+        with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            summaries = []
+            for job, s in zip(jobs, pool.map(run_job, jobs)):
+                summaries.append(s)
+                if show:
+                    _report(job, s)
+    else:
+        summaries = []
+        for job in jobs:
+            s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
+            summaries.append(s)
+            if show:
+                _report(job, s)
+    return 0 if all(s.vertices > 0 or args.steps == 0 for s in summaries) else 1
+
+
+def _run_with_progress(job: Job) -> Summary:
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    from grammar_lang.cli_support import stderr_console
+    with Progress(TextColumn("[bold]seed {task.fields[seed]}"), BarColumn(),
+                  TextColumn("{task.completed}/{task.total} steps"),
+                  TextColumn("{task.fields[size]} vertices"), TimeElapsedColumn(),
+                  console=stderr_console(), transient=True) as bar:
+        task = bar.add_task("grow", total=job.steps, seed=job.seed, size=0)
+
+        def tick(s: Summary) -> None:
+            bar.update(task, completed=s.applied, size=s.vertices)
+
+        return run_job(job, tick)
+
+
+def _report(job: Job, s: Summary) -> None:
+    rate = s.applied / s.seconds if s.seconds > 0 else 0.0
+    why = ", ".join(f"{k} {v}" for k, v in sorted(s.reasons.items()))
+    sys.stderr.write(
+        f"{job.out}: seed {job.seed}: {s.applied} steps applied, {s.rejected} rejected"
+        f"{' (' + why + ')' if why else ''}; {s.vertices} vertices, {s.edges} edges; "
+        f"{s.seconds:.2f} s ({rate:.0f} steps/s)\n")
+    if not s.stop.startswith("reached"):
+        sys.stderr.write(f"  stopped early: {s.stop}; wrote the last valid drawing\n")

@@ -1,0 +1,82 @@
+"""Which rule to try next: priorities, weights and step limits (Pogrzebacz & Ilčík §3.1).
+
+Each step looks at the priority levels in ascending order (a lower value runs first) and uses
+the first level that (a) has not reached its own step limit and (b) has a rule with a match.
+Within that level a move (a rule in one direction) is drawn with probability proportional to
+its weight; if it has no match it is set aside for this step and another is drawn, so a level
+is passed over only when none of its moves applies. A level that has been passed over is looked
+at again on the next step, since later rewrites can make it applicable again. Generation ends
+when the global limit of applied steps is reached or no level applies (a terminal drawing).
+
+Merrell's grammars use every rule in both directions with no preference (paper §6.1): each
+direction is a move with the rule's weight. Grammars written in SPO mode are hand-written
+productions and only run forward (lhs → rhs) unless asked otherwise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from grammar_lang.rules import Grammar
+
+from .host import Host
+from .matching import Match, find_match
+from .rewrite import DirectedRule
+
+
+@dataclass(frozen=True)
+class Level:
+    priority: int
+    moves: tuple[DirectedRule, ...]
+    weights: tuple[float, ...]
+    limit: int | None = None
+
+
+@dataclass(frozen=True)
+class Schedule:
+    levels: tuple[Level, ...]
+    spo: bool
+
+    @staticmethod
+    def build(grammar: Grammar, bidirectional: bool | None = None,
+              limits: dict[int, int] | None = None) -> "Schedule":
+        spo = grammar.header.mode == "spo"
+        both = (not spo) if bidirectional is None else bidirectional
+        rings = grammar.rings
+        by_level: dict[int, list[tuple[DirectedRule, float]]] = {}
+        for rule in grammar.rules:
+            if rule.weight <= 0:
+                continue
+            dirs = (True, False) if both else (True,)
+            for fwd in dirs:
+                by_level.setdefault(rule.priority, []).append(
+                    (DirectedRule.build(rule, fwd, rings), float(rule.weight)))
+        limits = limits or {}
+        levels = tuple(Level(p, tuple(m for m, _ in by_level[p]),
+                             tuple(w for _, w in by_level[p]), limits.get(p))
+                       for p in sorted(by_level))
+        return Schedule(levels, spo)
+
+    def moves(self) -> list[DirectedRule]:
+        return [m for lv in self.levels for m in lv.moves]
+
+    def choose(self, host: Host, rng: np.random.Generator,
+               applied: dict[int, int]) -> tuple[Level, DirectedRule, Match] | None:
+        """The level, move and match for the next step, or None when nothing applies."""
+        for level in self.levels:
+            if level.limit is not None and applied.get(level.priority, 0) >= level.limit:
+                continue
+            w = np.array(level.weights, dtype=float)
+            while True:
+                total = float(w.sum())
+                if total <= 0:
+                    break
+                k = int(np.searchsorted(np.cumsum(w), rng.random() * total, side="right"))
+                k = min(k, len(w) - 1)
+                match = find_match(host, level.moves[k].pattern, rng, self.spo)
+                if match is not None:
+                    return level, level.moves[k], match
+                w[k] = 0.0
+        return None

@@ -1,0 +1,166 @@
+"""A uniform grid over segments and points, so geometric tests look at neighbours only.
+
+Cells are squares of side `cell`. A segment is filed in every cell its bounding box touches,
+which is a handful for edges of about the unit length the grid is sized for. Queries return ids
+sorted, so nothing depends on insertion or hash order.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Hashable, Iterable
+
+Point = tuple[float, float]
+
+
+class Grid:
+    def __init__(self, cell: float):
+        if not cell > 0:
+            raise ValueError("grid cell size must be positive")
+        self.cell = float(cell)
+        self._seg_cells: dict[tuple[int, int], set] = {}
+        self._pt_cells: dict[tuple[int, int], set] = {}
+        self._segs: dict[Hashable, tuple[Point, Point]] = {}
+        self._pts: dict[Hashable, Point] = {}
+        # Occupied columns and rows (point counts), for bounds and ray casts.
+        self._cols: dict[int, int] = {}
+        self._rows: dict[int, int] = {}
+
+    # --- cells ------------------------------------------------------------------------------
+    def key(self, p: Point) -> tuple[int, int]:
+        return (math.floor(p[0] / self.cell), math.floor(p[1] / self.cell))
+
+    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> Iterable[tuple[int, int]]:
+        c = self.cell
+        i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
+        j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                yield (i, j)
+
+    # --- segments ---------------------------------------------------------------------------
+    def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
+        self._segs[sid] = (a, b)
+        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+            self._seg_cells.setdefault(k, set()).add(sid)
+
+    def remove_segment(self, sid: Hashable) -> None:
+        a, b = self._segs.pop(sid)
+        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+            cell = self._seg_cells[k]
+            cell.discard(sid)
+            if not cell:
+                del self._seg_cells[k]
+
+    def segment(self, sid: Hashable) -> tuple[Point, Point]:
+        return self._segs[sid]
+
+    def segments_near(self, x0: float, y0: float, x1: float, y1: float) -> set:
+        """Ids of segments filed in any cell the box touches (a superset of those meeting it)."""
+        out: set = set()
+        cells = self._seg_cells
+        for k in self.box_cells(x0, y0, x1, y1):
+            s = cells.get(k)
+            if s:
+                out |= s
+        return out
+
+    # --- points -----------------------------------------------------------------------------
+    def add_point(self, pid: Hashable, p: Point) -> None:
+        self._pts[pid] = p
+        k = self.key(p)
+        self._pt_cells.setdefault(k, set()).add(pid)
+        self._cols[k[0]] = self._cols.get(k[0], 0) + 1
+        self._rows[k[1]] = self._rows.get(k[1], 0) + 1
+
+    def remove_point(self, pid: Hashable) -> None:
+        p = self._pts.pop(pid)
+        k = self.key(p)
+        cell = self._pt_cells[k]
+        cell.discard(pid)
+        if not cell:
+            del self._pt_cells[k]
+        for d, key in ((self._cols, k[0]), (self._rows, k[1])):
+            d[key] -= 1
+            if not d[key]:
+                del d[key]
+
+    def points_near(self, x0: float, y0: float, x1: float, y1: float) -> list:
+        out = []
+        cells = self._pt_cells
+        for k in self.box_cells(x0, y0, x1, y1):
+            s = cells.get(k)
+            if s:
+                out.extend(s)
+        return sorted(out)
+
+    def bounds(self) -> tuple[float, float, float, float] | None:
+        """The box of occupied point cells (cell-aligned), or None when empty."""
+        if not self._cols:
+            return None
+        c = self.cell
+        return (min(self._cols) * c, min(self._rows) * c,
+                (max(self._cols) + 1) * c, (max(self._rows) + 1) * c)
+
+    def min_column(self) -> int | None:
+        return min(self._cols) if self._cols else None
+
+    def ray_left(self, p: Point, skip=()) -> tuple[Hashable, float] | None:
+        """The first segment hit by the ray from `p` towards -x, at height p.y + 0⁺.
+
+        A segment counts when its ends straddle that height (one end strictly above p.y), which
+        makes the ray miss the segments that merely end at p. Returns (id, x of the hit).
+        """
+        px, py = p
+        c = self.cell
+        col0 = math.floor(px / c)
+        row = math.floor(py / c)
+        lo = self.min_column()
+        if lo is None:
+            return None
+        best: tuple[float, Hashable] | None = None
+        seen: set = set()
+        col = col0
+        # Every segment ends at points, so nothing lies left of the leftmost point column.
+        while col >= lo:
+            cell = self._seg_cells.get((col, row))
+            if cell:
+                for sid in cell:
+                    if sid in seen or sid in skip:
+                        continue
+                    seen.add(sid)
+                    (ax, ay), (bx, by) = self._segs[sid]
+                    if (ay > py) == (by > py):
+                        continue
+                    x = ax + (py - ay) * (bx - ax) / (by - ay)
+                    if x < px and (best is None or x > best[0] or (x == best[0] and sid < best[1])):
+                        best = (x, sid)
+            if best is not None and best[0] >= col * c:
+                break
+            col -= 1
+        return None if best is None else (best[1], best[0])
+
+
+def seg_distance(a: Point, b: Point, c: Point, d: Point) -> float:
+    """Euclidean distance between segments ab and cd (0 when they cross or touch)."""
+    if _cross(a, b, c, d):
+        return 0.0
+    return min(_pt_seg(a, c, d), _pt_seg(b, c, d), _pt_seg(c, a, b), _pt_seg(d, a, b))
+
+
+def _orient(a: Point, b: Point, c: Point) -> float:
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+def _cross(a: Point, b: Point, c: Point, d: Point) -> bool:
+    o1, o2 = _orient(a, b, c), _orient(a, b, d)
+    o3, o4 = _orient(c, d, a), _orient(c, d, b)
+    return ((o1 > 0 > o2) or (o1 < 0 < o2)) and ((o3 > 0 > o4) or (o3 < 0 < o4))
+
+
+def _pt_seg(p: Point, a: Point, b: Point) -> float:
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    L = dx * dx + dy * dy
+    t = 0.0 if L == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L))
+    ex, ey = a[0] + t * dx - p[0], a[1] + t * dy - p[1]
+    return math.hypot(ex, ey)
