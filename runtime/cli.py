@@ -20,6 +20,8 @@ def build_parser() -> ArgumentParser:
     p = ArgumentParser(prog="ggrun", description=__doc__,
                        epilog="Also: 'ggrun check EXAMPLE DRAWING.json' verifies a drawing.")
     p.add_argument("file", nargs="?", help="a grammar (.ggr), or an example (.gg, .svg)")
+    from .run_cmd import add_arguments
+    add_arguments(p)
     common_flags(p)
     return p
 
@@ -29,7 +31,8 @@ def _main(argv: Sequence[str]) -> int:
         args = build_check_parser().parse_args(argv[1:])
         raise NotImplementedError("ggrun check")
     args = build_parser().parse_args(argv)
-    raise NotImplementedError("ggrun")
+    from .run_cmd import run_command
+    return run_command(args)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
