@@ -148,6 +148,10 @@ class _Resolver:
     def _define(self, stmt, unit: _Unit) -> None:
         d = self.defs
         if isinstance(stmt, A.ExampleName):
+            if not stmt.name.strip():
+                raise error("the example name is empty", stmt.span,
+                            'give it a name, e.g. example "Castle", or leave the line out to '
+                            "use the file name", source=unit.text)
             if self._claim("example", "", stmt.span, unit, "the example name"):
                 d.name = stmt.name
         elif isinstance(stmt, A.Exterior):
@@ -476,7 +480,9 @@ class _Resolver:
             named = [s.name for s in defs if s.name]
             if defs and name not in named:
                 raise error(f"unknown primitive '{name}'", target.span,
-                            did_you_mean(name, named) or "name it: primitive NAME { … }",
+                            did_you_mean(name, named) or
+                            ("known primitives: " + ", ".join(named) if named else
+                             "name the primitive: primitive NAME { … }"),
                             source=unit.text)
         props = S.check_block(stmt.props, S.DECORATIONS[kind], f"{kind} decoration",
                               self.defs.palette, unit.base, unit.text)
@@ -502,10 +508,11 @@ def _check_pairs(prims: list) -> None:
 def _label_text(word: A.Word, unit: _Unit) -> str:
     """Face labels and class names written as colours take the SVG importer's form (lowercase
     #rrggbb), so that they match the labels and classes of an imported drawing."""
-    if word.kind == "colour":
+    if word.kind == "colour" or (word.kind == "string" and S.is_hex_colour(word.text)):
         return S.colour(word, {}, unit.text)
     if word.kind == "star":
-        raise error("'*' is not a face label", word.span, source=unit.text)
+        raise error("'*' is not a face label", word.span,
+                    "'*' means \"all\" only as the target of a decoration", source=unit.text)
     return word.text
 
 

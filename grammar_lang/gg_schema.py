@@ -25,6 +25,10 @@ _UNITS = {  # value kind → {suffix: factor}
 }
 
 
+def is_hex_colour(text: str) -> bool:
+    return text.startswith("#") and normalize_color(text) is not None
+
+
 def colour(word: A.Word, palette: dict[str, str], source: str | None) -> str:
     """A colour value as lowercase #rrggbb (the form SVG labels take): #hex, a palette name
     (`colour` statements), a CSS colour name, or "rgb(…)" in quotes."""
@@ -172,7 +176,7 @@ def check_value(prop: A.Prop, field: Field, palette: dict[str, str], base: Path,
     # numeric kinds
     if not isinstance(v, A.Num):
         raise error(f"'{prop.key}' needs a number, got {v.text}", where,
-                    field.doc or None, source=source)
+                    f"{prop.key} is the {field.doc}", source=source)
     units = _UNITS[field.kind]
     if v.unit not in units:
         allowed = [u for u in units if u]
@@ -182,7 +186,8 @@ def check_value(prop: A.Prop, field: Field, palette: dict[str, str], base: Path,
     value = v.value * units[v.unit]
     if field.kind == "int":
         if value != int(value):
-            raise error(f"'{prop.key}' needs a whole number, got {v.text}", where, source=source)
+            raise error(f"'{prop.key}' needs a whole number, got {v.text}", where,
+                        f"write e.g. {prop.key}: {max(1, round(value))}", source=source)
         value = int(value)
     bad_lo = field.lo is not None and (value <= field.lo if field.lo_open else value < field.lo)
     bad_hi = field.hi is not None and (value >= field.hi if field.hi_open else value > field.hi)
