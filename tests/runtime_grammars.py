@@ -55,3 +55,29 @@ def lines(mode="dpo") -> Grammar:
     # An end with a middle vertex is an end: lhs L–M, rhs L, both with boundary "x ∧".
     grow_l = Rule("grow", Side((0, 2), ((0, 0, 1, 0),), ((1, 1), UP)), Side((0,), (), ((0, 0), UP)))
     return Grammar(header, (Rule("segment", seg, EMPTY), grow_l))
+
+
+def lines_with_wire(mode="dpo") -> Grammar:
+    """Lines where a middle vertex can be removed (its neighbours glued by a wire) or inserted."""
+    g = lines(mode)
+    mid = Side((2,), (), ((0, 0), (0, 1), UP))
+    wire = Side((), (), ((-1, 1), (-1, 0), UP), wires=(bd.half(0, False),))
+    return Grammar(g.header, g.rules[:1] + (Rule("mid", mid, wire),))
+
+
+def cut_pair(mode: str) -> Grammar:
+    """A rule matching an end L and an end R as two components: on a bare segment L–R the two
+    are glued to each other, which DPO refuses (dangling) and SPO allows (edge deleted)."""
+    g = lines(mode)
+    pair = Side((0, 1), (), ((0, 0), UP, (1, 0), UP, bd.DOWN))
+    return Grammar(g.header, g.rules[:1] + (Rule("cut", pair, pair),))
+
+
+def staged(limit_grow_priority: int = 1) -> Grammar:
+    """Hand-written style (forward only): make segments at priority 0, grow them after."""
+    g = lines("spo")
+    seg = Side((0, 1), ((0, 0, 1, 0),), (UP,))
+    make = Rule("make", EMPTY, seg, priority=0)
+    grow = Rule("grow", Side((0,), (), ((0, 0), UP)),
+                Side((0, 2), ((0, 0, 1, 0),), ((1, 1), UP)), priority=limit_grow_priority)
+    return Grammar(g.header, (make, grow))
