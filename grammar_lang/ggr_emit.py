@@ -88,7 +88,7 @@ def _header(h: Header, names: list[str]) -> list[str]:
         if p.count != 1:
             line += f" count={p.count}"
         dirs = " ".join(f"{num(h.labels[bd.label_of(t)].direction(bd.is_bar(t)))}°" for t in p.ring)
-        out.append(f"{line}  # {_safe(bd.format_tokens(p.boundary, names))}  ({dirs})")
+        out.append(f"{line}  # {_safe(unicode(p.boundary, names))}  ({dirs})")
     if h.decorations:
         out.append("")
     for d in h.decorations:
@@ -111,8 +111,7 @@ def _rule(rule: Rule, h: Header, names: list[str]) -> list[str]:
     rings = [p.ring for p in h.primitives]
     kind = "starter" if rule.is_starter else "rule"
     lhs_tokens = rule.lhs.tokens(rings)
-    comment = (f"∂L = {bd.format_tokens(lhs_tokens, names) or 'ε'}" if rule.is_starter
-               else f"∂ = {bd.format_tokens(lhs_tokens, names) or 'ε'}")
+    comment = f"{'∂L' if rule.is_starter else '∂'} = {unicode(lhs_tokens, names) or 'ε'}"
     out = [f"{kind} {name(rule.name)} priority={rule.priority} weight={num(rule.weight)} {{"
            f"  # {_safe(comment)}"]
     out += _side("lhs", rule.lhs, h, names)
@@ -162,6 +161,13 @@ def _wrap(items: list[str], indent: str = "    ") -> list[str]:
     if cur:
         lines.append(indent + cur)
     return lines
+
+
+def unicode(tokens, names: list[str]) -> str:
+    """The paper's notation, spaced out when label names are longer than a letter (x01 y01)."""
+    if all(len(n) == 1 for n in names):
+        return bd.format_tokens(tokens, names)
+    return " ".join(bd.format_tokens([t], names) for t in tokens)
 
 
 def ring(tokens, names: list[str]) -> str:

@@ -539,11 +539,12 @@ class _Builder:
         names = [l.name for l in ctx.header.labels]
         k = next((i for i, (a, b) in enumerate(zip(left, right)) if a != b), min(len(left), len(right)))
         line = next(c for c in rhs_node.children[1:] if c.data == "boundary")
+        at = line.children[min(k, len(line.children) - 1)]
         raise self.fail(
             f"the sides of rule '{name}' have different boundaries: "
             f"∂L = {bd.format_tokens(left, names) or 'ε'} but "
             f"∂R = {bd.format_tokens(right, names) or 'ε'} (they differ at item {k + 1})",
-            self._first_token(line),
+            at if isinstance(at, Token) else self._slot(at).span,
             "the i-th open half-edge of the left side is the same interface point as the i-th "
             "of the right side: list both boundaries in the same order, from the same start, "
             "with the same turns")
