@@ -12,6 +12,9 @@ def build_check_parser() -> ArgumentParser:
                        description="check a drawing against its example and explain failures")
     p.add_argument("example", help="the example (.gg, .svg) or its grammar (.ggr)")
     p.add_argument("drawing", help="a gg-drawing/1 JSON file")
+    p.add_argument("--tolerance", type=float, metavar="DEG",
+                   help="angle tolerance for matching edges to labels (default: the example's)")
+    p.add_argument("--all", action="store_true", help="show every failure, not the first 50")
     common_flags(p)
     return p
 
@@ -29,7 +32,8 @@ def build_parser() -> ArgumentParser:
 def _main(argv: Sequence[str]) -> int:
     if argv and argv[0] == "check":
         args = build_check_parser().parse_args(argv[1:])
-        raise NotImplementedError("ggrun check")
+        from .verifier import check_command
+        return check_command(args.example, args.drawing, args.tolerance, 0 if args.all else 50)
     args = build_parser().parse_args(argv)
     from .run_cmd import run_command
     return run_command(args)

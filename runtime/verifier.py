@@ -37,6 +37,9 @@ from .faces import UNBOUNDED, compute_faces
 # coordinates to 6 decimals (as gg-drawing/1 files do) can move an edge's end.
 DIRECTION_EPS_DEG = 1e-6
 COORD_SLACK = 2e-6
+# Segments meeting at a smaller angle (its sine) run along each other: an overlap, whatever
+# rounding says about where exactly they meet.
+PARALLEL_SINE = 1e-9
 # Vertices closer than this fraction of the drawing's extent are one point.
 COINCIDE_FRACTION = 1e-9
 
@@ -285,7 +288,13 @@ class _Context:
             if best is not None and best[3] <= self.tol:
                 self.assigned[e] = (best[1], not best[2])
                 continue
-            if de.label is not None:
+            if de.label is not None and not cands:
+                lab = ref.labels[ix.by_name[de.label]]
+                self.fail("label", f"{self.edge_name(e)}: its faces {de.left}|{de.right} and class "
+                          f"{de.cls} do not fit its label '{de.label}'", edges=(e,), at=self.mid(e),
+                          expected=f"faces {lab.left}|{lab.right} (or {lab.right}|{lab.left} "
+                                   f"walking against it), class {lab.cls}", found=found)
+            elif de.label is not None:
                 lab = ref.labels[ix.by_name[de.label]]
                 expected = (f"label {lab.name}: direction {_deg(lab.angle)} with faces "
                             f"{lab.left}|{lab.right}, or {_deg(lab.direction(True))} with faces "
@@ -388,8 +397,8 @@ class _Context:
             main = groups[0]
             off = sorted(es[k] for gr in groups[1:] for k in gr)
             found = "; ".join(
-                f"{_deg(lab.angle + float(np.mean(dev[gr])))}: edges "
-                f"{_some('#' + str(es[k]) for k in gr)}" for gr in groups)
+                f"{_deg(lab.angle + float(np.mean(dev[gr])))}: "
+                f"{_edges(es[k] for k in gr)}" for gr in groups)
             self.fail("direction", f"the {len(es)} edges of label {lab.name} point in "
                       f"{len(groups)} directions, not one", edges=tuple(off),
                       at=self.mid(off[0]),
@@ -428,14 +437,18 @@ class _Context:
 
     # --- crossings, touches, overlaps, coincident vertices ----------------------------------
     def geometry(self) -> bool:
-        """Report geometric conflicts; whether there were none (faces are then well defined)."""
+        """Report geometric conflicts; whether there were none (faces are then well defined).
+
+        Vertices and edges closer than `near` count as touching: a file rounded to 6 decimals
+        cannot tell them apart from touching ones anyway.
+        """
         before = len(self.failures)
         g = self.g
         n = len(g.ids)
+        extent = float(np.ptp(g.xy, axis=0).max()) if n else 0.0
+        near = max(COORD_SLACK, COINCIDE_FRACTION * extent)
         if n >= 2:
-            extent = float(np.ptp(g.xy, axis=0).max())
-            r = max(COINCIDE_FRACTION * extent, 1e-12)
-            for i, j in sorted(cKDTree(g.xy).query_pairs(r)):
+            for i, j in sorted(cKDTree(g.xy).query_pairs(near)):
                 self.fail("coincident", f"vertices {g.ids[i]} and {g.ids[j]} are at one point",
                           (g.ids[i], g.ids[j]), at=self.vertex_at(i))
         good = np.array([e for e in range(len(self.d.edges)) if e not in self.bad_edges],
@@ -444,67 +457,56 @@ class _Context:
             ends = g.ends[good]
             segs = shapely.linestrings(np.stack([g.xy[ends[:, 0]], g.xy[ends[:, 1]]], axis=1))
             tree = shapely.STRtree(segs)
-            a, b = tree.query(segs, predicate="intersects")
+            a, b = tree.query(segs, predicate="dwithin", distance=near)
             keep = a < b
-            a, b = a[keep], b[keep]
-            self._pairs(good, ends, segs, a, b)
+            self._pairs(good, ends, segs, a[keep], b[keep], near)
             degree = np.bincount(ends.ravel(), minlength=n)
             lonely = np.flatnonzero(degree == 0)
             if len(lonely):
-                pi, si = tree.query(shapely.points(g.xy[lonely]), predicate="intersects")
+                pi, si = tree.query(shapely.points(g.xy[lonely]), predicate="dwithin",
+                                    distance=near)
                 for p, s in sorted(zip(pi.tolist(), si.tolist())):
                     e = int(good[s])
                     self.fail("touch", f"vertex {g.ids[lonely[p]]} lies on {self.edge_name(e)}",
                               (g.ids[lonely[p]],), (e,), self.vertex_at(lonely[p]))
         return len(self.failures) == before
 
-    def _pairs(self, good, ends, segs, a, b) -> None:
+    def _pairs(self, good, ends, segs, a, b, near) -> None:
         ea, eb = ends[a], ends[b]
         same = ((ea[:, :, None] == eb[:, None, :]).sum(axis=(1, 2)))
         xy = self.g.xy
+        da = xy[ea[:, 1]] - xy[ea[:, 0]]
+        db = xy[eb[:, 1]] - xy[eb[:, 0]]
+        sine = np.abs(da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]) / (
+            np.hypot(*da.T) * np.hypot(*db.T))
         # Sharing one end: fine unless they leave it in the same direction.
         one = np.flatnonzero(same == 1)
-        if len(one):
-            pa, pb = ea[one], eb[one]
-            w = np.where((pa[:, 0] == pb[:, 0]) | (pa[:, 0] == pb[:, 1]), pa[:, 0], pa[:, 1])
-            oa = np.where(pa[:, 0] == w, pa[:, 1], pa[:, 0])
-            ob = np.where(pb[:, 0] == w, pb[:, 1], pb[:, 0])
-            da, db = xy[oa] - xy[w], xy[ob] - xy[w]
-            cross = da[:, 0] * db[:, 1] - da[:, 1] * db[:, 0]
-            dot = (da * db).sum(axis=1)
-            scale = np.hypot(*da.T) * np.hypot(*db.T)
-            bad = one[(np.abs(cross) <= 1e-12 * scale) & (dot > 0)]
-        else:
-            bad = np.zeros(0, dtype=np.int64)
+        w = np.where((ea[one, 0] == eb[one, 0]) | (ea[one, 0] == eb[one, 1]), ea[one, 0], ea[one, 1])
+        oa = np.where(ea[one, 0] == w, ea[one, 1], ea[one, 0])
+        ob = np.where(eb[one, 0] == w, eb[one, 1], eb[one, 0])
+        dot = ((xy[oa] - xy[w]) * (xy[ob] - xy[w])).sum(axis=1)
+        bad = one[(sine[one] <= PARALLEL_SINE) & (dot > 0)]
         problems = sorted(set(bad.tolist()) | set(np.flatnonzero(same != 1).tolist()),
                           key=lambda k: (int(good[a[k]]), int(good[b[k]])))
         for k in problems:
             e, f = int(good[a[k]]), int(good[b[k]])
-            vs = tuple(dict.fromkeys(self.g.ids[int(x)] for x in (*ends[a[k]], *ends[b[k]])))
-            if same[k] >= 1:
+            vs = tuple(dict.fromkeys(self.g.ids[int(x)] for x in (*ea[k], *eb[k])))
+            if same[k] >= 1 or sine[k] <= PARALLEL_SINE:
                 self.fail("overlap", f"{self.edge_name(e)} and {self.edge_name(f)} overlap",
                           vs, (e, f), self.mid(e))
                 continue
-            inter = shapely.intersection(segs[a[k]], segs[b[k]])
-            if inter.geom_type != "Point":
-                self.fail("overlap", f"{self.edge_name(e)} and {self.edge_name(f)} overlap",
-                          vs, (e, f), self.mid(e))
-                continue
-            p = np.array([inter.x, inter.y])
-            ends_here = [int(x) for x in (*ends[a[k]], *ends[b[k]])
-                         if np.hypot(*(xy[int(x)] - p)) <= COORD_SLACK]
-            on_a = any(x in ends[a[k]] for x in ends_here)
-            on_b = any(x in ends[b[k]] for x in ends_here)
+            on_b = [int(x) for x in ea[k] if shapely.distance(shapely.Point(xy[x]), segs[b[k]]) <= near]
+            on_a = [int(x) for x in eb[k] if shapely.distance(shapely.Point(xy[x]), segs[a[k]]) <= near]
             if on_a and on_b:
-                continue   # two vertices at one point: reported as coincident
+                continue   # an end of each at one point: reported as coincident vertices
             if on_a or on_b:
-                v = ends_here[0]
-                other = f if on_a else e
+                v, other = (on_a[0], e) if on_a else (on_b[0], f)
                 self.fail("touch", f"vertex {self.g.ids[v]} lies on {self.edge_name(other)} "
-                          f"without being one of its ends", vs, (e, f), (float(p[0]), float(p[1])))
-            else:
-                self.fail("crossing", f"{self.edge_name(e)} and {self.edge_name(f)} cross",
-                          vs, (e, f), (float(p[0]), float(p[1])))
+                          f"without being one of its ends", vs, (e, f), self.vertex_at(v))
+                continue
+            p = shapely.intersection(segs[a[k]], segs[b[k]])
+            self.fail("crossing", f"{self.edge_name(e)} and {self.edge_name(f)} cross",
+                      vs, (e, f), (float(p.x), float(p.y)))
 
     # --- faces ------------------------------------------------------------------------------
     def face_labels(self) -> None:
@@ -512,51 +514,63 @@ class _Context:
         faces = compute_faces(g.xy, g.ends)
         left = [edges[h >> 1].right if h & 1 else edges[h >> 1].left for h in range(2 * len(edges))]
 
-        def majority(cycle) -> str:
-            counts = Counter(left[h] for h in cycle)
-            return min(counts, key=lambda k: (-counts[k], k))
+        def labels_on(cycle) -> dict[str, list[int]]:
+            out: dict[str, set[int]] = defaultdict(set)
+            for h in cycle:
+                out[left[h]].add(h >> 1)
+            return {k: sorted(v) for k, v in sorted(out.items())}
 
-        def disagree(cycle, label: str) -> list[int]:
-            return sorted({h >> 1 for h in cycle if left[h] != label})
+        def listing(groups) -> str:
+            return "; ".join(f"{k} on {_edges(es)}" for k, es in groups.items())
 
-        def bounded_by(cycle) -> str:
-            return "edges " + _some(f"#{e}" for e in sorted({h >> 1 for h in cycle}))
+        def edges_of(cycle) -> str:
+            return _edges(sorted({h >> 1 for h in cycle}))
 
         for f, face in enumerate(faces.faces):
             if f == UNBOUNDED:
                 label, where = self.ref.exterior, "the unbounded face (outside everything)"
             else:
                 cyc = faces.cycles[face.outer]
-                label = majority(cyc)
-                where = f"the face bounded by {bounded_by(cyc)}"
-                wrong = disagree(cyc, label)
-                if wrong:
-                    got = Counter(left[h] for h in cyc)
-                    self.fail("face", f"{where} has different labels on its sides: "
-                              + ", ".join(f"{k} ({got[k]})" for k in sorted(got)),
-                              edges=tuple(wrong), at=self.mid(wrong[0]),
-                              expected=f"'{label}' on every edge's side facing it",
-                              found=f"edges {_some('#' + str(e) for e in wrong)} say otherwise")
+                groups = labels_on(cyc)
+                # Which side is wrong cannot be told from the face alone: name them all.
+                label = max(groups, key=lambda k: (len(groups[k]), k == self.ref.exterior))
+                where = f"the face bounded by {edges_of(cyc)}"
+                if len(groups) > 1:
+                    involved = tuple(sorted({h >> 1 for h in cyc}))
+                    self.fail("face", f"{where} has different labels on its sides",
+                              edges=involved, at=self.mid(involved[0]),
+                              expected="one label on every side facing the face",
+                              found=listing(groups))
             for hole in face.holes:
                 cyc = faces.cycles[hole]
-                outside = majority(cyc)
-                comp = faces.component[g.ends[cyc[0] >> 1, 0]]
-                members = [g.ids[v] for v in np.flatnonzero(faces.component == comp)]
-                if outside != label:
-                    self.fail("nesting", f"the component of vertices {_some(members)} is drawn "
-                              f"inside {where}, which is labelled '{label}', but its outside is "
-                              f"labelled '{outside}'", tuple(members),
-                              tuple(sorted({h >> 1 for h in cyc})),
-                              self.vertex_at(int(g.ends[cyc[0] >> 1, 0])),
-                              expected=f"'{label}' around it", found=f"'{outside}'")
-                wrong = disagree(cyc, outside)
-                if wrong:
-                    self.fail("face", f"the outside of the component of vertices "
-                              f"{_some(members)} has different labels: "
-                              + ", ".join(sorted({left[h] for h in cyc})),
-                              edges=tuple(wrong), at=self.mid(wrong[0]),
-                              expected=f"'{outside}' all around",
-                              found=f"edges {_some('#' + str(e) for e in wrong)} say otherwise")
+                groups = labels_on(cyc)
+                root = int(g.ends[cyc[0] >> 1, 0])
+                members = [g.ids[v] for v in np.flatnonzero(faces.component == faces.component[root])]
+                involved = tuple(sorted({h >> 1 for h in cyc}))
+                if len(groups) == 1:
+                    outside = next(iter(groups))
+                    if outside != label:
+                        self.fail("nesting", f"the component of vertices {_some(members)} is drawn "
+                                  f"inside {where}, which is labelled '{label}', but its outside "
+                                  f"is labelled '{outside}'", tuple(members), involved,
+                                  self.vertex_at(root), expected=f"'{label}' around it",
+                                  found=f"'{outside}'")
+                elif f == UNBOUNDED:
+                    wrong = tuple(e for k, es in groups.items() if k != label for e in es)
+                    self.fail("face", f"the outside of the component of vertices {_some(members)} "
+                              f"is {where}, but some edges give it another label", tuple(members),
+                              wrong, self.mid(wrong[0]), expected=f"'{label}' all around",
+                              found=listing(groups))
+                else:
+                    self.fail("face", f"the outside of the component of vertices {_some(members)} "
+                              f"has different labels, inside {where} labelled '{label}'",
+                              tuple(members), involved, self.mid(involved[0]),
+                              expected=f"'{label}' all around", found=listing(groups))
+
+
+def _edges(es) -> str:
+    es = list(es)
+    return ("edge " if len(es) == 1 else "edges ") + _some(f"#{e}" for e in es)
 
 
 def _unique_sides(ref: Reference) -> list[EdgeLabel]:
