@@ -14,7 +14,7 @@ import unicodedata
 
 from . import boundary as bd
 from .ggr_file import stamp
-from .ggr_parser import FORMAT_VERSION
+from .ggr_parser import FORMAT_VERSION, unicode
 from .graph import Side
 from .rules import Grammar, Header, Rule
 from .source import DEFAULT_CLASS, Options
@@ -161,13 +161,6 @@ def _wrap(items: list[str], indent: str = "    ") -> list[str]:
     if cur:
         lines.append(indent + cur)
     return lines
-
-
-def unicode(tokens, names: list[str]) -> str:
-    """The paper's notation, spaced out when label names are longer than a letter (x01 y01)."""
-    if all(len(n) == 1 for n in names):
-        return bd.format_tokens(tokens, names)
-    return " ".join(bd.format_tokens([t], names) for t in tokens)
 
 
 def ring(tokens, names: list[str]) -> str:

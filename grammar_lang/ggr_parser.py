@@ -52,6 +52,13 @@ def parse_ggr(text: str, path: str = "<ggr>") -> Grammar:
     return _Builder(text, path).build(tree)
 
 
+def unicode(tokens, names) -> str:
+    """The paper's notation, spaced out when label names are longer than a letter (x01 y01)."""
+    if all(len(n) == 1 for n in names):
+        return bd.format_tokens(tokens, names)
+    return " ".join(bd.format_tokens([t], names) for t in tokens)
+
+
 # --- syntax errors ---------------------------------------------------------------------------
 
 _FRIENDLY = {
@@ -91,17 +98,19 @@ def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> UserError:
     if isinstance(exc, UnexpectedToken):
         tok = exc.token
         if tok.type == "$END":
-            what = "the end of the file"
+            what = "end of file"
             line = text.count("\n") + 1
             col = len(text.rsplit("\n", 1)[-1]) + 1
         elif tok.type == "_NL":
-            what = "the end of the line"
+            what = "end of line"
             col = len(text.splitlines()[line - 1]) + 1 if line <= len(text.splitlines()) else col
         else:
             what = repr(str(tok))
         length = len(str(tok)) if tok.type not in ("$END", "_NL") else 1
         hint = SYNTAX_HINT
-        if "_NL" in exc.expected and tok.type != "_NL":
+        if tok.type == "_NL":
+            hint = "this line ends too early; " + SYNTAX_HINT
+        elif "_NL" in exc.expected:
             hint = "each statement ends at the end of its line; " + SYNTAX_HINT
         return UserError(Diagnostic(f"unexpected {what}" + _expected(exc.expected),
                                     Span(path, line, col, length), hint, source=text))
@@ -133,6 +142,7 @@ class _Builder:
     def __init__(self, text: str, path: str):
         self.text, self.path = text, path
         self.errors: list[Diagnostic] = []
+        self.broken: set[str] = set()   # names whose definition had an error
 
     # -- helpers --
 
@@ -169,6 +179,10 @@ class _Builder:
         key = self.name(tok)
         if key in table:
             return table[key]
+        if key in self.broken:      # its definition already has an error; say it once
+            raise _Stop()
+        if not did_you_mean(key, table) and not hint and 0 < len(table) <= 12:
+            hint = "known: " + ", ".join(sorted(table))
         raise self.fail(f"unknown {what} '{key}'", tok, did_you_mean(key, table) or hint)
 
     # -- settings: `key=value` and bare flags --
@@ -263,7 +277,10 @@ class _Builder:
                 "this is not a .ggr rule file: it has no 'ggr 1' line", Span(self.path, 1, 1),
                 "a rule file starts with the line 'ggr 1'; see docs/ggr-language.md",
                 source=self.text))
-        header = self._header(singles, lists)
+        try:
+            header = self._header(singles, lists)
+        except _Stop:       # recorded; later checks would only repeat it
+            pass
         self._raise_errors()
         rules = self._rules(lists["rule"], header)
         self._raise_errors()
@@ -284,6 +301,20 @@ class _Builder:
             return fn(*args)
         except _Stop:
             return None
+
+    def _defined(self, fn, nodes: list[Tree], *args) -> list:
+        """Run fn over definitions; remember the names of failed ones, so that their uses
+        do not repeat the error."""
+        out = []
+        for node in nodes:
+            item = self._guard(fn, node, *args)
+            if item is None:
+                name = self._guard(self.name, node.children[0])
+                if name is not None:
+                    self.broken.add(name)
+            else:
+                out.append(item)
+        return out
 
     def _header(self, singles: dict[str, Tree], lists: dict[str, list[Tree]]) -> Header:
         version = singles["version"].children[0]
@@ -334,17 +365,15 @@ class _Builder:
         fields["face_labels"] = tuple(faces)
         known_faces = set(faces) | {exterior}
 
-        classes = [c for c in (self._guard(self._edge_class, n) for n in lists["edge_class"]) if c]
+        classes = self._defined(self._edge_class, lists["edge_class"])
         fields["classes"] = tuple(classes)
         class_names = {c.name for c in classes} | {DEFAULT_CLASS}
-        labels = [l for l in (self._guard(self._label, n, known_faces, class_names)
-                              for n in lists["label"]) if l]
+        labels = self._defined(self._label, lists["label"], known_faces, class_names)
         fields["labels"] = tuple(labels)
         self._unique(lists["label"], "edge label")
         self._unique(lists["edge_class"], "edge class")
         label_ids = {l.name: i for i, l in enumerate(labels)}
-        prims = [p for p in (self._guard(self._primitive, n, labels, label_ids)
-                             for n in lists["primitive"]) if p]
+        prims = self._defined(self._primitive, lists["primitive"], labels, label_ids)
         self._unique(lists["primitive"], "primitive")
         fields["primitives"] = tuple(prims)
         targets = {"face": known_faces, "edge": {c.name for c in classes} | {DEFAULT_CLASS},
@@ -407,6 +436,8 @@ class _Builder:
                 raise self.fail(f"unknown face label '{s[side]}'", where[side],
                                 did_you_mean(s[side], faces) or "declare it in the 'faces' line")
         cls = s.get("class", DEFAULT_CLASS)
+        if cls in self.broken and cls not in classes:
+            raise _Stop()
         if cls not in classes:
             raise self.fail(f"unknown edge class '{cls}'", where["class"],
                             did_you_mean(cls, classes) or "declare it with a 'class' line")
@@ -455,6 +486,8 @@ class _Builder:
                             did_you_mean(kind, targets) or "face, edge or vertex")
         target_tok = target_node.children[0]
         target = "*" if target_tok.type == "STAR" else self.name(target_tok)
+        if target != "*" and target not in targets[kind] and target in self.broken:
+            raise _Stop()
         if target != "*" and target not in targets[kind]:
             what = {"face": "face label", "edge": "edge class", "vertex": "primitive"}[kind]
             raise self.fail(f"unknown {what} '{target}'", target_tok,
@@ -542,8 +575,8 @@ class _Builder:
         at = line.children[min(k, len(line.children) - 1)]
         raise self.fail(
             f"the sides of rule '{name}' have different boundaries: "
-            f"∂L = {bd.format_tokens(left, names) or 'ε'} but "
-            f"∂R = {bd.format_tokens(right, names) or 'ε'} (they differ at item {k + 1})",
+            f"∂L = {unicode(left, names) or 'ε'} but "
+            f"∂R = {unicode(right, names) or 'ε'} (they differ at item {k + 1})",
             at if isinstance(at, Token) else self._slot(at).span,
             "the i-th open half-edge of the left side is the same interface point as the i-th "
             "of the right side: list both boundaries in the same order, from the same start, "
