@@ -39,10 +39,12 @@ class Diagnostic:
         """The offending line with a caret under the span, or '' when there is nothing to show."""
         if self.span is None or self.span.line <= 0 or self.source is None:
             return ""
-        lines = self.source.splitlines()
+        # Lines end at "\n" only, as parsers count them (splitlines() would also break at
+        # form feeds and U+2028, shifting every later line).
+        lines = self.source.split("\n")
         if self.span.line > len(lines):
             return ""
-        text = lines[self.span.line - 1].expandtabs(1)
+        text = lines[self.span.line - 1].rstrip("\r").expandtabs(1)
         gutter = f"{self.span.line:>4} | "
         col = max(self.span.column, 1)
         width = max(1, min(self.span.length, max(1, len(text) - col + 1)))

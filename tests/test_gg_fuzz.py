@@ -44,6 +44,10 @@ def _check_outcome(text: str) -> None:
             assert d.span is not None and d.span.file
             assert 0 <= d.span.line <= n_lines + 1
             assert d.hint, d.message
+            if d.source is not None and 1 <= d.span.line <= d.source.count("\n") + 1:
+                # the excerpt shows the line the parser counted (lines end at "\n" only)
+                shown = d.source.split("\n")[d.span.line - 1].rstrip("\r").expandtabs(1)
+                assert d.excerpt().split("\n")[0].endswith(shown)
         return
     assert isinstance(result, ExampleSource)
 
