@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from ggr_strategies import grammars, headers, renumbered, sides, starter_sides
+from ggr_strategies import grammars, renumbered, sides
 from grammar_lang.diagnostics import UserError
 from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_file import edit_state, write_ggr
@@ -119,7 +119,6 @@ def test_write_refuses_edited_and_foreign_files(tmp_path_factory, grammar):
 
 
 def test_crlf_line_endings_do_not_count_as_an_edit(tmp_path):
-    from ggr_strategies import headers as _h  # noqa: F401 - strategies import check
     grammar = parse_ggr(doc_blocks()[0][1])
     text = emit_ggr(grammar)
     assert edit_state(text.replace("\n", "\r\n")) == "generated"
