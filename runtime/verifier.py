@@ -213,12 +213,23 @@ def check_drawing(reference, drawing: Drawing, tolerance: float | None = None) -
     return ctx.failures
 
 
+def vertex_primitives(reference, drawing: Drawing) -> dict[int, int]:
+    """Vertex id → index of the primitive its ring matches, for the vertices that match one."""
+    ref = as_reference(reference)
+    ctx = _Context(ref, _Index(ref), drawing, _geometry(drawing), ref.angle_tolerance)
+    ctx.degenerate()
+    ctx.assign_labels()
+    ctx.rings()
+    return ctx.vertex_prim
+
+
 class _Context:
     def __init__(self, ref: Reference, ix: _Index, drawing: Drawing, g: _Geometry, tol: float):
         self.ref, self.ix, self.d, self.g, self.tol = ref, ix, drawing, g, tol
         self.failures: list[Failure] = []
         self.bad_edges: set[int] = set()                     # degenerate: left out of geometry
         self.assigned: dict[int, tuple[int, bool]] = {}      # edge → (label, u→v walks along a)
+        self.vertex_prim: dict[int, int] = {}                # vertex id → matching primitive
 
     def fail(self, *args, **kw) -> None:
         self.failures.append(Failure(*args, **kw))
@@ -351,6 +362,8 @@ class _Context:
                               f"of primitive {prim.name}", (vid,), tuple(h[2] for h in halves),
                               self.vertex_at(i), expected=self.ref.format(prim.boundary),
                               found=found)
+                else:
+                    self.vertex_prim[vid] = ix.rings[ring]
                 continue
             if not self.ref.primitives:
                 self.fail("ring", f"vertex {vid}: the example has no primitives", (vid,),

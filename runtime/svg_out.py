@@ -1,0 +1,307 @@
+"""Drawings as SVG: faces filled by label, edges stroked by class, decorations where simple.
+
+The picture is made to be read back: every face is one filled path (its holes cut out with
+`evenodd`) carrying `data-label`, and every edge class is one stroked path carrying
+`data-class`, which is what the SVG importer reads. Coordinates stay in drawing units with y
+negated, so y points up on screen; the viewBox fits the drawing with a margin.
+
+Colours: a face label's decoration `fill` wins, then the label itself when it is a colour
+(`#rrggbb`, as SVG examples label faces), then a fixed palette by the label's position among
+the example's face labels. The exterior is left unpainted unless decorated. Decorations
+(`decorate face|edge|vertex TARGET {...}`; a named target beats `*`, and among equals the
+later decoration wins)
+supply face fill/opacity/pattern, edge stroke/width/opacity/image, and vertex
+marker/size/fill/stroke/image. Bending (Appendix B) changes geometry and is not done here.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+from xml.sax.saxutils import escape, quoteattr
+
+import numpy as np
+
+from grammar_lang.fileio import atomic_write
+
+from .drawing import Drawing
+from .faces import UNBOUNDED, compute_faces, cycle_points
+
+# Colour-blind-friendly fills (light) and strokes (dark), used in order.
+FILL_PALETTE = ("#a6cee3", "#b2df8a", "#fdbf6f", "#cab2d6", "#fb9a99", "#ffff99", "#8dd3c7",
+                "#bebada", "#fccde5", "#d9d9d9", "#ccebc5", "#ffed6f")
+STROKE_PALETTE = ("#1a1a1a", "#1f78b4", "#e31a1c", "#33a02c", "#6a3d9a", "#ff7f00", "#b15928")
+# Sizes relative to the example's unit length (its median edge), when not decorated.
+STROKE_WIDTH = 0.02
+MARGIN = 0.05           # of the drawing's larger side
+SCREEN = 800.0          # px along the larger side, for the width/height attributes
+
+
+def _hex_colour(label: str) -> bool:
+    return len(label) == 7 and label[0] == "#" and all(c in "0123456789abcdefABCDEF" for c in label[1:])
+
+
+class _Fmt:
+    """Fixed-precision numbers: enough decimals for the drawing's size, no exponents."""
+
+    def __init__(self, extent: float):
+        self.decimals = int(min(9, max(0, 5 - math.floor(math.log10(extent))))) if extent > 0 else 3
+
+    def __call__(self, x: float) -> str:
+        text = f"{x:.{self.decimals}f}"
+        if "." in text:
+            text = text.rstrip("0").rstrip(".")
+        return "0" if text in ("-0", "") else text
+
+
+def _decorations(reference, kind: str) -> list[tuple[str, dict]]:
+    if reference is None:
+        return []
+    return [(d.target, dict(d.props)) for d in getattr(reference, "decorations", ())
+            if d.kind == kind]
+
+
+def _style_for(decos: list[tuple[str, dict]], *names: str) -> dict:
+    """Merged properties of the decorations aimed at `names` or '*': a named target beats '*'
+    (as in CSS), and among equals the later one wins."""
+    out: dict = {}
+    for target, props in decos:
+        if target == "*":
+            out.update(props)
+    for target, props in decos:
+        if target != "*" and target in names:
+            out.update(props)
+    return out
+
+
+def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None) -> str:
+    """The drawing as SVG text. `reference` (an Example, Header or Grammar) supplies the
+    exterior's name, the order of face labels and edge classes, the unit and decorations;
+    `base` is the folder the SVG will be written to, so image links can be relative."""
+    from .verifier import as_reference, vertex_primitives
+
+    ref = as_reference(reference) if reference is not None else None
+    exterior = ref.exterior if ref else "exterior"
+    ids = [v.id for v in drawing.vertices]
+    index = {v: i for i, v in enumerate(ids)}
+    xy = np.array([(v.x, v.y) for v in drawing.vertices], dtype=float).reshape(-1, 2)
+    ends = np.array([(index[e.u], index[e.v]) for e in drawing.edges], dtype=np.int64).reshape(-1, 2)
+    lengths = np.hypot(*(xy[ends[:, 1]] - xy[ends[:, 0]]).T) if len(ends) else np.zeros(0)
+    unit = ref.unit if ref else (float(np.median(lengths[lengths > 0])) if np.any(lengths > 0) else 1.0)
+
+    lo = xy.min(axis=0) if len(xy) else np.zeros(2)
+    hi = xy.max(axis=0) if len(xy) else np.zeros(2)
+    size = float(max(hi - lo)) if len(xy) else 0.0
+    margin = MARGIN * size if size > 0 else unit
+    fmt = _Fmt(size + 2 * margin)
+    vb = (lo[0] - margin, -hi[1] - margin, hi[0] - lo[0] + 2 * margin, hi[1] - lo[1] + 2 * margin)
+    k = SCREEN / max(vb[2], vb[3])
+
+    def pt(p) -> str:
+        return f"{fmt(p[0])},{fmt(-p[1])}"
+
+    def href(path: str) -> str:
+        if base is not None:
+            try:
+                return Path(os.path.relpath(path, base)).as_posix()
+            except ValueError:   # another drive on Windows
+                pass
+        return Path(path).as_uri()
+
+    face_decos = _decorations(ref, "face")
+    edge_decos = _decorations(ref, "edge")
+    vertex_decos = _decorations(ref, "vertex")
+    label_order = list(ref.face_labels) if ref else []
+    for e in drawing.edges:
+        for name in (e.left, e.right):
+            if name not in label_order:
+                label_order.append(name)
+    plain = [n for n in label_order if n != exterior and not _hex_colour(n)]
+
+    def face_style(label: str) -> tuple[str | None, dict]:
+        style = _style_for(face_decos, label)
+        if "fill" in style:
+            return style["fill"], style
+        if label == exterior:
+            return None, style
+        if _hex_colour(label):
+            return label.lower(), style
+        return FILL_PALETTE[plain.index(label) % len(FILL_PALETTE)], style
+
+    head = [f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+            f'viewBox="{" ".join(fmt(x) for x in vb)}" width="{fmt(vb[2] * k)}" '
+            f'height="{fmt(vb[3] * k)}">']
+    title = (ref.name if ref and ref.name else drawing.meta.get("example", "")) or "drawing"
+    head.append(f"  <title>{escape(str(title))}: {len(ids)} vertices, {len(drawing.edges)} edges</title>")
+    defs: list[str] = []
+    body: list[str] = []
+
+    # --- faces ------------------------------------------------------------------------------
+    faces = compute_faces(xy, ends)
+    left = [drawing.edges[h >> 1].right if h & 1 else drawing.edges[h >> 1].left
+            for h in range(2 * len(drawing.edges))]
+    patterns: dict[tuple, str] = {}
+    body.append('  <g id="faces" stroke="none">')
+    for f, face in enumerate(faces.faces):
+        if f == UNBOUNDED:
+            label = exterior
+            rings = [cycle_points(xy, ends, faces.cycles[c]) for c in face.holes]
+            fill, style = face_style(label)
+            if fill is None and "pattern" not in style:
+                continue
+            box = [(vb[0], -vb[1]), (vb[0] + vb[2], -vb[1]), (vb[0] + vb[2], -vb[1] - vb[3]),
+                   (vb[0], -vb[1] - vb[3])]
+            rings.insert(0, np.array(box))
+        else:
+            cyc = faces.cycles[face.outer]
+            counts: dict[str, int] = {}
+            for h in cyc:
+                counts[left[h]] = counts.get(left[h], 0) + 1
+            label = min(counts, key=lambda n: (-counts[n], n))
+            fill, style = face_style(label)
+            if fill is None and "pattern" not in style:
+                continue
+            rings = [cycle_points(xy, ends, cyc)] + [cycle_points(xy, ends, faces.cycles[c])
+                                                     for c in face.holes]
+        paint = fill or "none"
+        if "pattern" in style:
+            key = (style["pattern"], float(style.get("pattern-scale", 1.0)))
+            if key not in patterns:
+                pid = f"pattern{len(patterns)}"
+                patterns[key] = pid
+                w = fmt(unit * key[1])
+                defs.append(f'    <pattern id="{pid}" patternUnits="userSpaceOnUse" width="{w}" '
+                            f'height="{w}"><image xlink:href={quoteattr(href(key[0]))} '
+                            f'width="{w}" height="{w}"/></pattern>')
+            paint = f"url(#{patterns[key]})"
+        d = " ".join("M " + " L ".join(pt(p) for p in ring) + " Z" for ring in rings if len(ring))
+        extra = f' fill-opacity="{fmt(style["opacity"])}"' if "opacity" in style else ""
+        body.append(f'    <path d="{d}" fill="{paint}" fill-rule="evenodd"{extra} '
+                    f'data-label={quoteattr(label)}/>')
+    body.append("  </g>")
+
+    # --- edges, one path per class ----------------------------------------------------------
+    class_order = [c.name for c in ref.classes] if ref else []
+    for e in drawing.edges:
+        if e.cls not in class_order:
+            class_order.append(e.cls)
+    by_class: dict[str, list[int]] = {}
+    for i, e in enumerate(drawing.edges):
+        by_class.setdefault(e.cls, []).append(i)
+    body.append('  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">')
+    images: list[str] = []
+    for cls in sorted(by_class, key=class_order.index):
+        style = _style_for(edge_decos, cls)
+        colour = style.get("stroke", STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)])
+        width = float(style.get("width", STROKE_WIDTH * unit))
+        d = " ".join(f"M {pt(xy[ends[i, 0]])} L {pt(xy[ends[i, 1]])}" for i in by_class[cls])
+        extra = f' stroke-opacity="{fmt(style["opacity"])}"' if "opacity" in style else ""
+        if width > 0:
+            body.append(f'    <path d="{d}" stroke="{colour}" stroke-width="{fmt(width)}"{extra} '
+                        f'data-class={quoteattr(cls)}/>')
+        if "image" in style:
+            images.extend(_edge_images(xy, ends, by_class[cls], style, unit, fmt, href))
+    body.append("  </g>")
+    if images:
+        body.append('  <g id="edge-images">')
+        body.extend(images)
+        body.append("  </g>")
+
+    # --- vertex markers and images ----------------------------------------------------------
+    if vertex_decos:
+        prims = vertex_primitives(ref, drawing) if ref else {}
+        names = [p.name for p in ref.primitives] if ref else []
+        first_dir = _first_directions(drawing, xy, ends)
+        marks: list[str] = []
+        shapes: dict[tuple, str] = {}
+        for v, vid in enumerate(ids):
+            prim = names[prims[vid]] if vid in prims else None
+            style = _style_for(vertex_decos, *([prim] if prim else []))
+            if not style:
+                continue
+            x, y = fmt(xy[v, 0]), fmt(-xy[v, 1])
+            if "image" in style:
+                s = unit * float(style.get("scale", 1.0)) / 2
+                turn = ""
+                if style.get("rotate") and vid in first_dir:
+                    turn = f' transform="rotate({fmt(-first_dir[vid])} {x} {y})"'
+                marks.append(f'    <image xlink:href={quoteattr(href(style["image"]))} '
+                             f'x="{fmt(xy[v, 0] - s)}" y="{fmt(-xy[v, 1] - s)}" width="{fmt(2 * s)}" '
+                             f'height="{fmt(2 * s)}"{turn}/>')
+            marker = style.get("marker", "circle" if ("size" in style or "fill" in style) else "none")
+            if marker == "none":
+                continue
+            size = float(style.get("size", 4 * STROKE_WIDTH * unit))
+            key = (marker, size, style.get("fill", "#1a1a1a"), style.get("stroke", "none"))
+            if key not in shapes:
+                shapes[key] = f"marker{len(shapes)}"
+                defs.append(f'    <g id="{shapes[key]}">{_marker(*key, fmt, unit)}</g>')
+            marks.append(f'    <use xlink:href="#{shapes[key]}" x="{x}" y="{y}"/>')
+        if marks:
+            body.append('  <g id="vertices">')
+            body.extend(marks)
+            body.append("  </g>")
+
+    out = head
+    if defs:
+        out += ["  <defs>"] + defs + ["  </defs>"]
+    return "\n".join(out + body + ["</svg>"]) + "\n"
+
+
+def _marker(shape: str, size: float, fill: str, stroke: str, fmt, unit: float) -> str:
+    """A marker of the given size centred on the origin."""
+    r = size / 2
+    paint = f'fill="{fill}" stroke="{stroke}" stroke-width="{fmt(STROKE_WIDTH * unit / 2)}"'
+    if shape == "circle":
+        return f'<circle r="{fmt(r)}" {paint}/>'
+    if shape == "square":
+        return f'<rect x="{fmt(-r)}" y="{fmt(-r)}" width="{fmt(size)}" height="{fmt(size)}" {paint}/>'
+    if shape == "diamond":
+        return f'<path d="M 0,{fmt(-r)} L {fmt(r)},0 L 0,{fmt(r)} L {fmt(-r)},0 Z" {paint}/>'
+    if shape == "triangle":
+        h = r * math.sqrt(3) / 2
+        return f'<path d="M 0,{fmt(-r)} L {fmt(h)},{fmt(r / 2)} L {fmt(-h)},{fmt(r / 2)} Z" {paint}/>'
+    # cross: drawn with the fill colour, as it has no inside.
+    return (f'<path d="M {fmt(-r)},{fmt(-r)} L {fmt(r)},{fmt(r)} M {fmt(-r)},{fmt(r)} '
+            f'L {fmt(r)},{fmt(-r)}" fill="none" stroke="{fill}" '
+            f'stroke-width="{fmt(size / 5)}"/>')
+
+
+def _edge_images(xy, ends, edges, style, unit, fmt, href) -> list[str]:
+    """Copies of the edge image along each edge, `spacing` apart, turned with the edge."""
+    step = float(style.get("spacing", unit / 4))
+    link = quoteattr(href(style["image"]))
+    out = []
+    for i in edges:
+        a, b = xy[ends[i, 0]], xy[ends[i, 1]]
+        length = float(np.hypot(*(b - a)))
+        n = max(1, int(length // step))
+        angle = math.degrees(math.atan2(b[1] - a[1], b[0] - a[0]))
+        for j in range(n):
+            c = a + (b - a) * ((j + 0.5) / n)
+            x, y = fmt(c[0]), fmt(-c[1])
+            out.append(f'    <image xlink:href={link} x="{fmt(c[0] - step / 2)}" '
+                       f'y="{fmt(-c[1] - step / 2)}" width="{fmt(step)}" height="{fmt(step)}" '
+                       f'transform="rotate({fmt(-angle)} {x} {y})"/>')
+    return out
+
+
+def _first_directions(drawing, xy, ends) -> dict[int, float]:
+    """Each vertex's smallest outgoing direction in [-180, 180): its ring's first half-edge."""
+    out: dict[int, float] = {}
+    for i in range(len(ends)):
+        for a, b in ((0, 1), (1, 0)):
+            p, q = xy[ends[i, a]], xy[ends[i, b]]
+            ang = math.degrees(math.atan2(q[1] - p[1], q[0] - p[0]))
+            ang = (ang + 180.0) % 360.0 - 180.0
+            vid = drawing.vertices[int(ends[i, a])].id
+            if vid not in out or ang < out[vid]:
+                out[vid] = ang
+    return out
+
+
+def write_svg(drawing: Drawing, reference, path: str | Path) -> None:
+    """Render and write atomically, with image links relative to the file's folder."""
+    p = Path(path)
+    atomic_write(p, render_svg(drawing, reference, base=p.resolve().parent))
