@@ -233,8 +233,8 @@ def _ring_area(ring) -> float:
 def _face_samples(vertices: np.ndarray, ends: np.ndarray, faces) -> np.ndarray:
     """A point strictly inside each face (row 0, the unbounded face, is unused).
 
-    Each side of each edge offers the point just off its midpoint, closer than any other edge;
-    a face takes the offer that sits farthest from other edges.
+    Each side of each edge offers the point just off its midpoint, closer than any other edge
+    (so it lies in the face on that side); a face takes the offer farthest from other edges.
     """
     a, b = vertices[ends[:, 0]], vertices[ends[:, 1]]
     mid = (a + b) / 2.0
@@ -242,24 +242,23 @@ def _face_samples(vertices: np.ndarray, ends: np.ndarray, faces) -> np.ndarray:
     length = np.hypot(d[:, 0], d[:, 1])
     normal = np.stack([-d[:, 1], d[:, 0]], axis=1) / length[:, None]
     lines = shapely.linestrings(np.stack([a, b], axis=1))
-    tree = shapely.STRtree(lines)
     mids = shapely.points(mid)
-    qi, li = tree.query(mids, predicate="dwithin", distance=length.max())
+    room = length / 4.0
+    # Only edges within twice the room can shrink it.
+    qi, li = shapely.STRtree(lines).query(mids, predicate="dwithin", distance=2.0 * room)
     others = qi != li
     qi, li = qi[others], li[others]
-    room = length / 4.0
     if len(qi):
-        dist = shapely.distance(mids[qi], lines[li])
-        np.minimum.at(room, qi, dist / 2.0)
+        np.minimum.at(room, qi, shapely.distance(mids[qi], lines[li]) / 2.0)
+    offer_face = faces.face_of                        # half-edge 2e: left side, 2e+1: right
+    offer_room = np.repeat(room, 2)
+    sign = np.tile([1.0, -1.0], len(ends))
+    offer_point = np.repeat(mid, 2, axis=0) + (sign * offer_room)[:, None] \
+        * np.repeat(normal, 2, axis=0)
+    order = np.lexsort((-offer_room, offer_face))
+    faces_sorted, first = np.unique(offer_face[order], return_index=True)
     samples = np.zeros((faces.count, 2))
-    best = np.full(faces.count, -1.0)
-    for side, sign in ((0, 1.0), (1, -1.0)):
-        face = faces.face_of[side::2]
-        for e in np.argsort(-room, kind="stable").tolist():
-            f = face[e]
-            if room[e] > best[f]:
-                best[f] = room[e]
-                samples[f] = mid[e] + sign * room[e] * normal[e]
+    samples[faces_sorted] = offer_point[order[first]]
     return samples
 
 

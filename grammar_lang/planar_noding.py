@@ -18,6 +18,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 MAX_ROUNDS = 32
+SNAP_ROUNDS = 8
 
 
 class NodingError(Exception):
@@ -69,25 +70,36 @@ def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
          distance: float) -> Pieces:
     """Split segments (pairs of vertex indices) at crossings and near vertices, dedupe overlaps.
 
-    `vertices` must already be merged (no two closer than `distance`).
+    `vertices` must already be merged (no two closer than `distance`). The first round snaps
+    with the full merge distance; later rounds, which only mop up crossings the bending
+    created, route crossings through near vertices for a few rounds and then only split where
+    geometry really meets, so that snapping cannot oscillate.
     """
     vertices = np.asarray(vertices, dtype=float)
     is_input = np.ones(len(vertices), dtype=bool)
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     sources: list[list[tuple[int, bool]]] = [[(int(s), True)] for s in source_ids]
     ends, sources = _dedupe(ends, sources)
-    for _ in range(MAX_ROUNDS):
+    extent = np.ptp(vertices, axis=0).max() if len(vertices) else 0.0
+    exact = 1e-9 * max(float(extent), 1.0)
+    for round_ in range(MAX_ROUNDS):
         if len(ends) == 0:
             break
-        splits, new_points = _find_splits(vertices, ends, distance)
+        near = max(distance, exact) if round_ == 0 else exact
+        snap = max(distance, exact) if round_ < SNAP_ROUNDS else exact
+        splits, new_points = _find_splits(vertices, ends, near, snap)
         if not splits:
             return Pieces(vertices, ends, sources, is_input)
         if len(new_points):
-            centres, index = cluster(np.asarray(new_points), distance)
-            base = len(vertices)
-            vertices = np.vstack([vertices, centres])
-            is_input = np.concatenate([is_input, np.zeros(len(centres), dtype=bool)])
-            splits = {seg: [v if v >= 0 else base + int(index[-v - 1]) for v in vs]
+            centres, index = cluster(np.asarray(new_points), snap)
+            # A cluster of crossings that lands near a vertex is that vertex.
+            dist, nearest = cKDTree(vertices).query(centres, distance_upper_bound=snap)
+            target = np.where(np.isfinite(dist), nearest, -1)
+            fresh = np.flatnonzero(target < 0)
+            target[fresh] = len(vertices) + np.arange(len(fresh))
+            vertices = np.vstack([vertices, centres[fresh]])
+            is_input = np.concatenate([is_input, np.zeros(len(fresh), dtype=bool)])
+            splits = {seg: [v if v >= 0 else int(target[index[-v - 1]]) for v in vs]
                       for seg, vs in splits.items()}
         ends, sources = _split(vertices, ends, sources, splits)
         ends, sources = _dedupe(ends, sources)
@@ -96,16 +108,19 @@ def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
     return Pieces(vertices, ends, sources, is_input)
 
 
-def _find_splits(vertices: np.ndarray, ends: np.ndarray, distance: float):
-    """{segment: [vertex ids to route it through]} and new crossing points (ids -1, -2, …)."""
+def _find_splits(vertices: np.ndarray, ends: np.ndarray, near: float, snap: float):
+    """{segment: [vertex ids to route it through]} and new crossing points (ids -1, -2, …).
+
+    A vertex within `near` of a segment's interior splits it (T-junctions, overlaps); a
+    crossing within `snap` of a vertex routes both segments through that vertex.
+    """
     a, b = vertices[ends[:, 0]], vertices[ends[:, 1]]
     lines = shapely.linestrings(np.stack([a, b], axis=1))
     tree = shapely.STRtree(lines)
     splits: dict[int, list[int]] = {}
 
-    # Vertices on or near a segment's interior: T-junctions and collinear overlaps.
     pts = shapely.points(vertices)
-    vi, si = tree.query(pts, predicate="dwithin", distance=distance)
+    vi, si = tree.query(pts, predicate="dwithin", distance=near)
     keep = (ends[si, 0] != vi) & (ends[si, 1] != vi)
     vi, si = vi[keep], si[keep]
     if len(vi):
@@ -115,7 +130,6 @@ def _find_splits(vertices: np.ndarray, ends: np.ndarray, distance: float):
         for v, s in zip(vi[inside].tolist(), si[inside].tolist()):
             splits.setdefault(s, []).append(v)
 
-    # Proper crossings away from every vertex (near a vertex, the T-junction rule applies).
     i, j = tree.query(lines, predicate="intersects")
     keep = (i < j) & (ends[i, 0] != ends[j, 0]) & (ends[i, 0] != ends[j, 1]) \
         & (ends[i, 1] != ends[j, 0]) & (ends[i, 1] != ends[j, 1])
@@ -132,15 +146,15 @@ def _find_splits(vertices: np.ndarray, ends: np.ndarray, distance: float):
         i, j, t = i[proper], j[proper], t[proper]
         crossings = a[i] + t[:, None] * r[proper]
         if len(crossings):
-            near, _ = shapely.STRtree(pts).query(shapely.points(crossings),
-                                                 predicate="dwithin", distance=distance)
-            far = np.ones(len(crossings), dtype=bool)
-            far[near] = False
-            for k in np.flatnonzero(far).tolist():
-                new_points.append(crossings[k])
-                ident = -len(new_points)
-                splits.setdefault(int(i[k]), []).append(ident)
-                splits.setdefault(int(j[k]), []).append(ident)
+            dist, nearest = cKDTree(vertices).query(crossings, distance_upper_bound=snap)
+            for k in range(len(crossings)):
+                if np.isfinite(dist[k]):
+                    target = int(nearest[k])
+                else:
+                    new_points.append(crossings[k])
+                    target = -len(new_points)
+                splits.setdefault(int(i[k]), []).append(target)
+                splits.setdefault(int(j[k]), []).append(target)
     return splits, new_points
 
 

@@ -285,3 +285,18 @@ def test_random_rectangles_follow_painters_order(rects):
                   or (not vertical and sy in (y, y + h) and x < sx < x + w)]
         visible = any(not any(j > k for j in a & b) for k in owners)
         assert (output.distance(shapely.Point(sx, sy)) < 1e-9) == visible
+
+
+real = st.floats(0, 100, allow_nan=False, allow_infinity=False)
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.tuples(real, real, real, real), min_size=2, max_size=12))
+def test_random_hand_drawn_segments_stay_planar_at_the_default_merge_distance(segments):
+    """Noisy input (near-misses, near-parallel lines) still gives a planar graph or a diagnostic."""
+    try:
+        g = build(*(Stroke(((a, b), (c, d))) for a, b, c, d in segments))
+    except UserError:
+        return
+    assert_noded(g, tolerance=1e-9)
+    assert euler_holds(g)
