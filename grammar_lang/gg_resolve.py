@@ -9,22 +9,21 @@ error; a definition in an importing file overrides the imported one.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Callable
 
 from . import gg_ast as A
+from . import gg_checks as C
 from . import gg_schema as S
-from .diagnostics import Span, UserError, did_you_mean, error
+from .diagnostics import Span, did_you_mean, error
 from .fileio import read_text
 from .source import (DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
                      ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
 
 ParseSyntax = Callable[[str, str], tuple]
 BORDER_CLASS = "border"
-_ANGLE_EPS = 1e-6
 
 
 @dataclass
@@ -209,17 +208,18 @@ class _Resolver:
         for svg in d.svg.values():      # a class the .gg defines wins over the drawing's
             for name, cls in svg.classes.items():
                 classes.setdefault(name, cls)
+        frame = next((s for s, _ in self.flat
+                      if isinstance(s, A.Polyline) and s.border and s.cls is None), None)
+        if frame is not None and BORDER_CLASS not in classes:
+            classes[BORDER_CLASS] = EdgeClass(BORDER_CLASS, border=True, span=frame.span)
         self.class_names = set(classes) | {DEFAULT_CLASS}
         paint, prims, decos = [], [], []
         for stmt, unit in self.flat:
             if isinstance(stmt, A.Face) and (stmt.colour is not None or stmt.props):
-                decos.append(self._face_decoration(stmt, unit))
+                decos.append((unit, self._face_decoration(stmt, unit)))
             elif isinstance(stmt, A.Polygon):
                 paint.extend(self._polygon(stmt, unit))
             elif isinstance(stmt, A.Polyline):
-                if stmt.border and stmt.cls is None and BORDER_CLASS not in classes:
-                    classes[BORDER_CLASS] = EdgeClass(BORDER_CLASS, border=True, span=stmt.span)
-                    self.class_names.add(BORDER_CLASS)
                 paint.append(self._polyline(stmt, unit, classes))
             elif isinstance(stmt, A.Edge):
                 paint.extend(self._edges(stmt, unit))
@@ -228,9 +228,9 @@ class _Resolver:
             elif isinstance(stmt, A.ShapeFrom):
                 svg = d.svg[id(stmt)]
                 paint.extend(svg.paint)
-                decos.extend(svg.decorations)
+                decos.extend((unit, deco) for deco in svg.decorations)
             elif isinstance(stmt, A.Decorate):
-                decos.append(self._decoration(stmt, unit))
+                decos.append((unit, self._decoration(stmt, unit)))
         if paint and prims:
             _, unit = prims[0]
             raise error("an example gives either a shape or its primitives, not both",
@@ -242,13 +242,15 @@ class _Resolver:
                         "draw it with polygon, polyline, loop or edge, take it from an SVG "
                         "with `shape from \"drawing.svg\"`, or list its primitives",
                         source=root.text)
-        if prims:
-            _check_pairs(prims)
+        C.partners([(p, unit.text) for p, unit in prims])
         return ExampleSource(
             path=root.path, name=d.name or Path(root.path).stem, exterior=d.exterior,
             face_labels={k: v for k, v in d.faces.items() if k != d.exterior},
             paint=paint, primitives=[p for p, _ in prims], classes=classes,
-            options=self._options(), decorations=decos, text=root.text)
+            options=self._options(), text=root.text,
+            # Later decorations override earlier ones, so an importing file's come after its
+            # imports' wherever its `import` lines are (a stable sort keeps file order).
+            decorations=[deco for unit, deco in sorted(decos, key=lambda t: -t[0].depth)])
 
     def _unit_of(self, table: str, name: str) -> _Unit:
         return self.defs.origin[(table, name)][0]
@@ -377,34 +379,10 @@ class _Resolver:
     # ---- classes, primitives, decorations -----------------------------------------------------
 
     def _edge_class(self, c: A.ClassDef, unit: _Unit) -> EdgeClass:
-        v = S.check_block(c.props, S.CLASS, "class", self.defs.palette, unit.base, unit.text)
-        span = {p.key: p.span for p in c.props}
-
-        def fail(msg, key, hint):
-            raise error(msg, span.get(key, c.span), hint, source=unit.text)
-
-        lo, hi, fixed, tile = v.get("min"), v.get("max"), v.get("fixed"), v.get("tile")
-        if lo is not None and hi is not None and lo > hi:
-            fail(f"min {lo:g} is larger than max {hi:g}", "min", "swap them")
-        if fixed is not None:
-            if v.get("rigid"):
-                fail("a rigid edge keeps its drawn length, so 'fixed' contradicts it", "fixed",
-                     "remove 'fixed' or 'rigid'")
-            if (lo is not None and fixed < lo) or (hi is not None and fixed > hi):
-                fail(f"fixed length {fixed:g} is outside min…max", "fixed",
-                     "widen the range or drop min/max (fixed is enough)")
-            if tile is not None and abs(fixed / tile - round(fixed / tile)) > 1e-9:
-                fail(f"fixed length {fixed:g} is not a multiple of tile {tile:g}", "fixed",
-                     "make fixed a whole multiple of tile")
-        if tile is not None:
-            if v.get("rigid"):
-                fail("a rigid edge keeps its drawn length, so 'tile' contradicts it", "tile",
-                     "remove 'tile' or 'rigid'")
-            if hi is not None and tile > hi:
-                fail(f"tile {tile:g} is longer than max {hi:g}: no length would fit", "tile",
-                     "make max at least one tile")
-        return EdgeClass(_label_text(c.name, unit), lo, hi, fixed, tile, bool(v.get("rigid", False)),
-                         bool(v.get("border", False)), span=c.span)
+        values = S.check_block(c.props, S.CLASS, "class", self.defs.palette, unit.base,
+                               unit.text)
+        return C.edge_class(_label_text(c.name, unit), values, {p.key: p.span for p in c.props},
+                            c.span, unit.text)
 
     def _primitive(self, stmt: A.PrimitiveDef, unit: _Unit) -> PrimitiveSpec:
         if not stmt.half_edges:
@@ -434,19 +412,7 @@ class _Resolver:
                             f"the first definition is at {first}; rename one",
                             source=unit.text)
         halves.sort(key=lambda t: t[0].angle)
-        for (a, ha), (b, hb) in zip(halves, halves[1:]):
-            if abs(a.angle - b.angle) < _ANGLE_EPS:
-                raise error(f"two half-edges point the same way ({a.angle:g}°)", hb.span,
-                            "each direction can leave a vertex only once", source=unit.text)
-        for i, (a, ha) in enumerate(halves):
-            b, hb = halves[(i + 1) % len(halves)]
-            if a.left != b.right:
-                between = (f"between the half-edges at {a.angle:g}° and {b.angle:g}°"
-                           if len(halves) > 1 else f"around the half-edge at {a.angle:g}°")
-                raise error(f"the face {between} is '{a.left}' on one side and '{b.right}' on "
-                            "the other", hb.span if len(halves) > 1 else ha.span,
-                            "going counter-clockwise, each half-edge's left face must be the "
-                            "next half-edge's right face", source=unit.text)
+        C.vertex_ring([(h, node.span) for h, node in halves], unit.text)
         return PrimitiveSpec(tuple(h for h, _ in halves), stmt.name, span=stmt.span)
 
     def _face_decoration(self, stmt: A.Face, unit: _Unit) -> Decoration:
@@ -487,22 +453,6 @@ class _Resolver:
         props = S.check_block(stmt.props, S.DECORATIONS[kind], f"{kind} decoration",
                               self.defs.palette, unit.base, unit.text)
         return Decoration(kind, name, tuple(props.items()), span=stmt.span)
-
-
-def _check_pairs(prims: list) -> None:
-    """Every half-edge must have a partner it can be glued to, or no shape can be completed."""
-    have = [(h.angle, h.left, h.right, h.cls) for p, _ in prims for h in p.half_edges]
-    for spec, unit in prims:
-        for h in spec.half_edges:
-            want = (h.angle % 360.0) - 180.0
-            ok = any(abs(((a - want + 180.0) % 360.0) - 180.0) < _ANGLE_EPS and l == h.right
-                     and r == h.left and c == h.cls for a, l, r, c in have)
-            if not ok:
-                raise error(f"the half-edge at {h.angle:g}° ({h.left} | {h.right}, class "
-                            f"{h.cls}) has no partner", spec.span,
-                            f"some primitive needs a half-edge at {want:g}° with left "
-                            f"'{h.right}' and right '{h.left}' and the same class, or no shape "
-                            "can ever be completed", source=unit.text)
 
 
 def _label_text(word: A.Word, unit: _Unit) -> str:

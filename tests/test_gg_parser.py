@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from conftest import CORPUS, ROOT, corpus_names
+from conftest import ROOT, corpus_names
 from grammar_lang import gg_schema
 from grammar_lang.diagnostics import Span, UserError
 from grammar_lang.gg_parser import decode_string, parse_file, parse_syntax, parse_text
@@ -406,3 +405,13 @@ def test_schema_tables_are_consistent():
     # the defaults the docs promise are the model's
     assert Options().angle_tolerance == 10 and Limits().generations == 12
     assert math.isclose(0.1, __import__("grammar_lang.source").source.EdgeClass.DEFAULT_MIN)
+
+
+def test_the_importing_files_decorations_and_border_come_last_and_first(tmp_path):
+    (tmp_path / "style.gg").write_text("decorate edge * { width: 1 }\n")
+    main = tmp_path / "main.gg"
+    main.write_text("decorate edge * { width: 3 }\nimport \"style\"\n"
+                    "polyline (0, 0) (1, 1) class border\nborder rect (0, 0) (5, 5)\n")
+    src = parse_file(main)
+    assert [d.props for d in src.decorations] == [(("width", 1.0),), (("width", 3.0),)]
+    assert src.classes["border"].border and src.paint[0].cls == "border"
