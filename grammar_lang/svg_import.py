@@ -53,9 +53,8 @@ class _Node:
 class _TreeBuilder(xml.sax.ContentHandler):
     """Builds a small tree that remembers where each element starts (ElementTree forgets)."""
 
-    def __init__(self, lines: list[str]):
+    def __init__(self):
         super().__init__()
-        self.lines = lines
         self.locator = None
         self.stack: list[_Node] = []
         self.root: _Node | None = None
@@ -65,11 +64,9 @@ class _TreeBuilder(xml.sax.ContentHandler):
         self.locator = locator
 
     def _position(self) -> tuple[int, int]:
+        # expat counts 0-based columns in characters.
         line = self.locator.getLineNumber() if self.locator else 0
         col = self.locator.getColumnNumber() if self.locator else 0
-        # expat counts columns in bytes; carets count characters.
-        if 1 <= line <= len(self.lines) and col:
-            col = len(self.lines[line - 1].encode("utf-8")[:col].decode("utf-8", "ignore"))
         return line, col + 1
 
     def startElementNS(self, name, qname, attrs):
@@ -103,8 +100,7 @@ class _Refused(Exception):
 
 
 def _parse_xml(text: str, file: str) -> _Node:
-    lines = text.splitlines()
-    builder = _TreeBuilder(lines)
+    builder = _TreeBuilder()
     parser = defused_sax.make_parser()
     parser.setFeature(xml.sax.handler.feature_namespaces, True)
     parser.setContentHandler(builder)
@@ -130,8 +126,6 @@ def _parse_xml(text: str, file: str) -> _Node:
                     source=text) from None
     except xml.sax.SAXParseException as exc:
         line, col = exc.getLineNumber() or 0, exc.getColumnNumber() or 0
-        if 1 <= line <= len(lines) and col:
-            col = len(lines[line - 1].encode("utf-8")[:col].decode("utf-8", "ignore"))
         message = exc.getMessage()
         raise error(f"not well-formed XML: {message}", Span(file, line, col + 1),
                     "check the file is a complete, valid SVG document", source=text) from None

@@ -90,6 +90,8 @@ def parse_path(text: str) -> list[Subpath]:
         if ch in _COMMANDS:
             command, command_at = ch, i
             i = _skip(text, i + 1)
+            if not subpaths and command not in "Mm":
+                raise SvgValueError("path data must start with 'M'", command_at)
             if command in _CURVES:
                 kind = "arc" if command in "Aa" else "curve"
                 raise SvgValueError(f"path has a {kind} ('{command}'); only straight segments "
