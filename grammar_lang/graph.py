@@ -91,3 +91,36 @@ class Side:
 
 
 EMPTY = Side((), (), ())
+
+
+def face_walk(side: Side, start: Slot, rings: Sequence[Sequence[int]]) -> list[tuple[Slot, int]]:
+    """The open slots met walking around the face that leaves through open slot `start`.
+
+    Returns (open slot, net turns after it) pairs from `start` on, following the rotation
+    system: at a vertex the walk goes counter-clockwise to the next slot of the ring (a ∧ when it
+    wraps past the last); crossing an edge from a barred half-edge is a ∨. A wire (bare edge) is
+    walked as its generation-0 string ā a ∧. Raises ValueError if `start` is not open.
+    """
+    if start[0] < 0:
+        bar, a = (start[0], 1), (start[0], 0)
+        walk = [(bar, 0), (a, 1)]
+        return walk if start == bar else walk[::-1]
+    partner = side.partner()
+    if start in partner:
+        raise ValueError(f"slot {start} is glued, not open")
+    out: list[list] = [[start, 0]]
+    v, i = start
+    for _ in range(sum(len(rings[p]) for p in side.vertices) + 1):
+        k = len(rings[side.vertices[v]])
+        out[-1][1] += 1 if i == k - 1 else 0
+        i = (i + 1) % k
+        while (v, i) in partner:
+            out[-1][1] -= 1 if bd.is_bar(rings[side.vertices[v]][i]) else 0
+            v, i = partner[(v, i)]
+            k = len(rings[side.vertices[v]])
+            out[-1][1] += 1 if i == k - 1 else 0
+            i = (i + 1) % k
+        if (v, i) == start:
+            return [(s, n) for s, n in out]
+        out.append([(v, i), 0])
+    raise ValueError("the face walk did not close")
