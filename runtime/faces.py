@@ -126,15 +126,16 @@ def _containers(xy, cycles, src, area, bounded, component, outer) -> list[int]:
     result = [UNBOUNDED] * n_comp
     if not bounded:
         return result
-    boxes = []
-    for c in bounded:
-        p = xy[src[list(cycles[c])]]
-        boxes.append(shapely.box(*p.min(axis=0), *p.max(axis=0)))
-    tree = shapely.STRtree(boxes)
+    # Bounding boxes of the bounded cycles, from their half-edges' start points.
+    halves = np.concatenate([cycles[c] for c in bounded])
+    starts = np.cumsum([0] + [len(cycles[c]) for c in bounded[:-1]])
+    p = xy[src[halves]]
+    lo = np.minimum.reduceat(p, starts, axis=0)
+    hi = np.maximum.reduceat(p, starts, axis=0)
+    tree = shapely.STRtree(shapely.box(lo[:, 0], lo[:, 1], hi[:, 0], hi[:, 1]))
     # One vertex per component stands for it: components meet no other component.
     first = np.full(n_comp, -1, dtype=np.int64)
-    for v in range(len(component) - 1, -1, -1):
-        first[component[v]] = v
+    first[component[::-1]] = np.arange(len(component))[::-1]
     probes = [k for k in range(n_comp) if outer[k] >= 0]
     points = shapely.points(xy[first[probes]])
     hit_probe, hit_box = tree.query(points, predicate="intersects")

@@ -66,7 +66,7 @@ class Reference:
         return tuple(l.name for l in self.labels)
 
     def format(self, tokens) -> str:
-        return bd.format_tokens(tokens, self.label_names)
+        return bd.format_tokens(tokens, [l.name for l in self.labels])
 
 
 def as_reference(obj) -> Reference:
@@ -143,23 +143,26 @@ class _Index:
             self.by_sides[(l.cls, l.right, l.left)].append((i, True))
         # Labels alike in every respect (rigid edges give one label each) are one token here.
         first: dict[tuple, int] = {}
-        self.canon = [first.setdefault((l.angle, l.left, l.right, l.cls, l.length), i)
-                      for i, l in enumerate(ref.labels)]
+        canon = [first.setdefault((l.angle, l.left, l.right, l.cls, l.length), i)
+                 for i, l in enumerate(ref.labels)]
+        # Per token (2 per label): its canonical token, and a sort key by direction.
+        self.canon = [bd.half(canon[t >> 1], bool(t & 1)) for t in range(2 * len(canon))]
+        self.order = [(l.direction(bar), bd.half(i, bar)) for i, l in enumerate(ref.labels)
+                      for bar in (False, True)]
+        self.canon_arr = np.array(self.canon, dtype=np.int64)
+        self.rank = np.empty(len(self.order), dtype=np.int64)
+        self.rank[sorted(range(len(self.order)), key=self.order.__getitem__)] = np.arange(len(self.order))
         self.rings: dict[bd.Tokens, int] = {}
         for k, p in enumerate(ref.primitives):
             self.rings.setdefault(self.canon_ring(p.ring), k)
         self.classes = {c.name: c for c in ref.classes}
         self.faces = set(ref.face_labels) | {ref.exterior}
 
-    def direction(self, token: int) -> float:
-        return self.ref.labels[bd.label_of(token)].direction(bd.is_bar(token))
-
     def canon_token(self, token: int) -> int:
-        return bd.half(self.canon[bd.label_of(token)], bd.is_bar(token))
+        return self.canon[token]
 
     def canon_ring(self, ring) -> bd.Tokens:
-        return tuple(sorted((self.canon_token(t) for t in ring),
-                            key=lambda t: (self.direction(t), t)))
+        return tuple(sorted((self.canon[t] for t in ring), key=self.order.__getitem__))
 
     def nearest_primitive(self, ring: bd.Tokens) -> tuple[Primitive, list[int], list[int]]:
         """The primitive whose ring differs least from `ring`: (it, missing, unexpected)."""
@@ -247,139 +250,183 @@ class _Context:
 
     # --- edges and their labels -------------------------------------------------------------
     def degenerate(self) -> None:
-        for e in range(len(self.d.edges)):
-            u, v = self.g.ends[e]
+        ends = self.g.ends
+        loops = ends[:, 0] == ends[:, 1]
+        for e in np.flatnonzero(loops | (self.g.length <= COORD_SLACK)).tolist():
+            u, v = (int(x) for x in ends[e])
+            self.bad_edges.add(e)
+            de = self.d.edges[e]
             if u == v:
-                self.bad_edges.add(e)
                 self.fail("degenerate", f"{self.edge_name(e)} is a loop from a vertex to itself",
-                          (self.d.edges[e].u,), (e,), self.vertex_at(u))
-            elif self.g.length[e] <= COORD_SLACK:
-                self.bad_edges.add(e)
+                          (de.u,), (e,), self.vertex_at(u))
+            else:
                 self.fail("degenerate", f"{self.edge_name(e)} has zero length",
-                          (self.d.edges[e].u, self.d.edges[e].v), (e,), self.vertex_at(u))
+                          (de.u, de.v), (e,), self.vertex_at(u))
 
     def assign_labels(self) -> None:
+        """Give each edge its label: among the labels with its faces and class (and its stated
+        label name, if any), the nearest in direction; for rigid labels also in length."""
         ref, ix = self.ref, self.ix
+        groups: dict[tuple, list[int]] = defaultdict(list)
         for e, de in enumerate(self.d.edges):
-            if e in self.bad_edges:
+            if e not in self.bad_edges:
+                groups[(de.cls, de.left, de.right, de.label)].append(e)
+        for (cls, left, right, name), es in groups.items():
+            problem = self._unknown_names(cls, left, right, name)
+            if problem:
+                for e in es:
+                    self._label_failure(e, *problem)
                 continue
-            theta = float(self.g.angle[e])
-            sides = f"{de.left}|{de.right}, class {de.cls}"
-            found = f"direction {_deg(theta)}, faces {sides}"
-            unknown = [f for f in (de.left, de.right) if f not in ix.faces]
-            if unknown:
-                hint = did_you_mean(unknown[0], ix.faces)
-                self.fail("label", f"{self.edge_name(e)}: face label '{unknown[0]}' is not one of "
-                          f"the example's" + (f" ({hint})" if hint else ""), edges=(e,),
-                          at=self.mid(e), expected=", ".join(sorted(ix.faces)), found=found)
-                continue
-            if de.cls not in ix.classes:
-                hint = did_you_mean(de.cls, ix.classes)
-                self.fail("label", f"{self.edge_name(e)}: edge class '{de.cls}' is not one of "
-                          f"the example's" + (f" ({hint})" if hint else ""), edges=(e,),
-                          at=self.mid(e), expected=", ".join(sorted(ix.classes)), found=found)
-                continue
-            if de.label is not None and de.label not in ix.by_name:
-                hint = did_you_mean(de.label, ix.by_name)
-                self.fail("label", f"{self.edge_name(e)}: no edge label '{de.label}' in the example"
-                          + (f" ({hint})" if hint else ""), edges=(e,), at=self.mid(e),
-                          expected=", ".join(ref.label_names), found=de.label)
-                continue
-            cands = ix.by_sides.get((de.cls, de.left, de.right), [])
-            if de.label is not None:
-                cands = [c for c in cands if c[0] == ix.by_name[de.label]]
-            best = None
-            for li, bar in cands:
+            cands = ix.by_sides.get((cls, left, right), [])
+            if name is not None:
+                cands = [c for c in cands if c[0] == ix.by_name[name]]
+            es_arr = np.array(es)
+            theta = self.g.angle[es_arr]
+            length = self.g.length[es_arr]
+            best_dev = np.full(len(es), np.inf)
+            best_key = np.full(len(es), np.inf)
+            best_fit = np.full(len(es), np.inf)
+            best = np.full(len(es), -1)
+            # In label order, so ties go to the first label, as (dev, fit, label) would.
+            for k, (li, bar) in enumerate(cands):
                 lab = ref.labels[li]
-                dev = abs(_wrap(theta - lab.direction(bar)))
-                fit = abs(self.g.length[e] - lab.length) if lab.length is not None else 0.0
-                key = (round(dev, 6), fit, li)
-                if best is None or key < best[0]:
-                    best = (key, li, bar, dev)
-            if best is not None and best[3] <= self.tol:
-                self.assigned[e] = (best[1], not best[2])
-                continue
-            if de.label is not None and not cands:
-                lab = ref.labels[ix.by_name[de.label]]
-                self.fail("label", f"{self.edge_name(e)}: its faces {de.left}|{de.right} and class "
-                          f"{de.cls} do not fit its label '{de.label}'", edges=(e,), at=self.mid(e),
-                          expected=f"faces {lab.left}|{lab.right} (or {lab.right}|{lab.left} "
-                                   f"walking against it), class {lab.cls}", found=found)
-            elif de.label is not None:
-                lab = ref.labels[ix.by_name[de.label]]
-                expected = (f"label {lab.name}: direction {_deg(lab.angle)} with faces "
-                            f"{lab.left}|{lab.right}, or {_deg(lab.direction(True))} with faces "
-                            f"{lab.right}|{lab.left}, class {lab.cls}")
-                self.fail("label", f"{self.edge_name(e)} does not fit its label '{de.label}' "
-                          f"within {_deg(self.tol)}", edges=(e,), at=self.mid(e),
-                          expected=expected, found=found)
-            elif best is None:
-                self.fail("label", f"{self.edge_name(e)}: no edge label of the example has faces "
-                          f"{sides}", edges=(e,), at=self.mid(e),
-                          expected="one of: " + "; ".join(
-                              f"{l.left}|{l.right} class {l.cls}" for l in _unique_sides(ref)),
-                          found=found)
-            else:
-                lab = ref.labels[best[1]]
-                self.fail("label", f"{self.edge_name(e)} points {_deg(best[3])} away from the "
-                          f"nearest edge label with its faces, more than the tolerance "
-                          f"{_deg(self.tol)}", edges=(e,), at=self.mid(e),
-                          expected=f"label {lab.name}: direction {_deg(lab.direction(best[2]))} "
-                                   f"with faces {sides}", found=found)
+                dev = np.abs(_wrap(theta - lab.direction(bar)))
+                key = np.round(dev, 6)
+                fit = np.abs(length - lab.length) if lab.length is not None else np.zeros(len(es))
+                better = (key < best_key) | ((key == best_key) & (fit < best_fit))
+                best_dev = np.where(better, dev, best_dev)
+                best_key = np.where(better, key, best_key)
+                best_fit = np.where(better, fit, best_fit)
+                best = np.where(better, k, best)
+            for e, k, dev in zip(es, best.tolist(), best_dev.tolist()):
+                if k >= 0 and dev <= self.tol:
+                    li, bar = cands[k]
+                    self.assigned[e] = (li, not bar)
+                else:
+                    self._misfit(e, cands, cands[k] if k >= 0 else None, dev)
 
-    def token_at_start(self, e: int) -> int:
-        """The half-edge token of edge e at its u end (the half pointing from u to v)."""
-        li, forward = self.assigned[e]
-        return bd.half(li, not forward)
+    def _unknown_names(self, cls, left, right, name):
+        """(message, expected) when an edge names a face, class or label the example lacks."""
+        ix = self.ix
+        for f in (left, right):
+            if f not in ix.faces:
+                hint = did_you_mean(f, ix.faces)
+                return (f"face label '{f}' is not one of the example's"
+                        + (f" ({hint})" if hint else ""), ", ".join(sorted(ix.faces)))
+        if cls not in ix.classes:
+            hint = did_you_mean(cls, ix.classes)
+            return (f"edge class '{cls}' is not one of the example's"
+                    + (f" ({hint})" if hint else ""), ", ".join(sorted(ix.classes)))
+        if name is not None and name not in ix.by_name:
+            hint = did_you_mean(name, ix.by_name)
+            return (f"no edge label '{name}' in the example" + (f" ({hint})" if hint else ""),
+                    ", ".join(self.ref.label_names))
+        return None
+
+    def _found(self, e: int) -> str:
+        de = self.d.edges[e]
+        return (f"direction {_deg(float(self.g.angle[e]))}, faces {de.left}|{de.right}, "
+                f"class {de.cls}" + (f", label {de.label}" if de.label is not None else ""))
+
+    def _label_failure(self, e: int, message: str, expected: str) -> None:
+        self.fail("label", f"{self.edge_name(e)}: {message}", edges=(e,), at=self.mid(e),
+                  expected=expected, found=self._found(e))
+
+    def _misfit(self, e: int, cands, best, dev: float) -> None:
+        """An edge whose faces and class are known but that fits no label."""
+        ref, de = self.ref, self.d.edges[e]
+        if de.label is not None:
+            lab = ref.labels[self.ix.by_name[de.label]]
+            if not cands:
+                self._label_failure(
+                    e, f"its faces {de.left}|{de.right} and class {de.cls} do not fit its label "
+                    f"'{de.label}'", f"faces {lab.left}|{lab.right} (or {lab.right}|{lab.left} "
+                    f"walking against it), class {lab.cls}")
+            else:
+                self._label_failure(
+                    e, f"it does not fit its label '{de.label}' within {_deg(self.tol)}",
+                    f"label {lab.name}: direction {_deg(lab.angle)} with faces "
+                    f"{lab.left}|{lab.right}, or {_deg(lab.direction(True))} with faces "
+                    f"{lab.right}|{lab.left}, class {lab.cls}")
+        elif best is None:
+            self._label_failure(
+                e, f"no edge label of the example has faces {de.left}|{de.right} and class "
+                f"{de.cls}", "one of: " + "; ".join(
+                    f"{l.left}|{l.right} class {l.cls}" for l in _unique_sides(ref)))
+        else:
+            lab = ref.labels[best[0]]
+            self._label_failure(
+                e, f"it points {_deg(dev)} away from the nearest edge label with its faces, "
+                f"more than the tolerance {_deg(self.tol)}",
+                f"label {lab.name}: direction {_deg(lab.direction(best[1]))} with faces "
+                f"{de.left}|{de.right}")
 
     # --- vertices ---------------------------------------------------------------------------
     def rings(self) -> None:
-        ix = self.ix
-        # Per vertex: (token, actual angle, edge, whether the vertex is the edge's u).
-        around: list[list[tuple[int, float, int, bool]]] = [[] for _ in self.g.ids]
-        blocked = set()
-        for e in range(len(self.d.edges)):
-            u, v = (int(x) for x in self.g.ends[e])
-            if e not in self.assigned:
-                blocked.update((u, v))
+        ix, g = self.ix, self.g
+        n = len(g.ids)
+        es = np.array(sorted(self.assigned), dtype=np.int64)
+        tok = np.array([bd.half(li, not fwd) for li, fwd in (self.assigned[e] for e in es.tolist())],
+                       dtype=np.int64)
+        blocked = np.zeros(n, dtype=bool)
+        unassigned = np.setdiff1d(np.arange(len(self.d.edges)), es)
+        blocked[g.ends[unassigned].ravel()] = True   # an edge there fits no label: reported
+        # Half-edges: the token at u points along the edge, its opposite at v back along it.
+        hv = np.concatenate([g.ends[es, 0], g.ends[es, 1]])
+        ht = np.concatenate([tok, tok ^ 1])
+        ha = np.concatenate([g.angle[es], _wrap(g.angle[es] + 180.0)])
+        he = np.concatenate([es, es])
+        order = np.lexsort((ix.rank[ht] if len(ht) else ht, hv))
+        hv, ht, ha, he = hv[order], ht[order], ha[order], he[order]
+        hs = np.concatenate([np.ones(len(es), bool), np.zeros(len(es), bool)])[order]
+        count = np.bincount(hv, minlength=n)
+        start = np.concatenate([[0], np.cumsum(count)[:-1]])
+        # Typed order must also be the geometric order: the angle steps sum to one turn.
+        nxt = np.arange(len(hv)) + 1
+        full = count > 0
+        nxt[(start + count - 1)[full]] = start[full]
+        steps = (ha[nxt] - ha) % 360.0 if len(hv) else ha
+        turn = np.add.reduceat(steps, start[full]) if len(hv) else np.zeros(0)
+        in_order = np.ones(n, dtype=bool)
+        in_order[full] = (count[full] <= 2) | (np.abs(turn - 360.0) < 1e-6)
+        canon = ix.canon_arr[ht].tolist()
+        for i in range(n):
+            if blocked[i]:
                 continue
-            t = self.token_at_start(e)
-            theta = float(self.g.angle[e])
-            around[u].append((t, theta, e, True))
-            around[v].append((bd.opposite(t), float(_wrap(theta + 180.0)), e, False))
-        for i, halves in enumerate(around):
-            if i in blocked:
-                continue   # an edge there fits no label: already reported
-            vid = self.g.ids[i]
-            halves.sort(key=lambda h: (ix.direction(h[0]), h[0]))
-            ring = tuple(ix.canon_token(h[0]) for h in halves)
-            found = self._describe(halves)
-            if ring in ix.rings:
-                angles = [h[1] for h in halves]
-                if len(angles) > 2 and not _cyclic_increasing(angles):
-                    prim = self.ref.primitives[ix.rings[ring]]
-                    self.fail("ring", f"the half-edges around vertex {vid} are not in the order "
-                              f"of primitive {prim.name}", (vid,), tuple(h[2] for h in halves),
-                              self.vertex_at(i), expected=self.ref.format(prim.boundary),
-                              found=found)
-                else:
-                    self.vertex_prim[vid] = ix.rings[ring]
+            s0, s1 = int(start[i]), int(start[i] + count[i])
+            ring = tuple(canon[s0:s1])
+            k = ix.rings.get(ring)
+            if k is not None and in_order[i]:
+                self.vertex_prim[g.ids[i]] = k
                 continue
-            if not self.ref.primitives:
-                self.fail("ring", f"vertex {vid}: the example has no primitives", (vid,),
-                          at=self.vertex_at(i), found=found)
-                continue
-            prim, missing, extra = ix.nearest_primitive(ring)
-            diff = []
-            if missing:
-                diff.append("missing " + " ".join(self.ref.format((t,)) for t in missing))
-            if extra:
-                diff.append("unexpected " + " ".join(self.ref.format((t,)) for t in extra))
-            what = "has no edges" if not halves else "matches no primitive of the example"
-            self.fail("ring", f"vertex {vid} {what}; nearest is {prim.name} "
-                      f"({', '.join(diff)})", (vid,), tuple(h[2] for h in halves),
-                      self.vertex_at(i), expected=f"{prim.name}: {self.ref.format(prim.boundary)}",
-                      found=found)
+            halves = list(zip(ht[s0:s1].tolist(), ha[s0:s1].tolist(), he[s0:s1].tolist(),
+                              hs[s0:s1].tolist()))
+            self._ring_failure(i, ring, k, halves)
+
+    def _ring_failure(self, i: int, ring, k, halves) -> None:
+        vid, ix = self.g.ids[i], self.ix
+        found = self._describe(halves)
+        edges = tuple(h[2] for h in halves)
+        if k is not None:
+            prim = self.ref.primitives[k]
+            self.fail("ring", f"the half-edges around vertex {vid} are not in the order of "
+                      f"primitive {prim.name}", (vid,), edges, self.vertex_at(i),
+                      expected=self.ref.format(prim.boundary), found=found)
+            return
+        if not self.ref.primitives:
+            self.fail("ring", f"vertex {vid}: the example has no primitives", (vid,),
+                      at=self.vertex_at(i), found=found)
+            return
+        prim, missing, extra = ix.nearest_primitive(ring)
+        diff = []
+        if missing:
+            diff.append("missing " + " ".join(self.ref.format((t,)) for t in missing))
+        if extra:
+            diff.append("unexpected " + " ".join(self.ref.format((t,)) for t in extra))
+        what = "has no edges" if not halves else "matches no primitive of the example"
+        self.fail("ring", f"vertex {vid} {what}; nearest is {prim.name} ({', '.join(diff)})",
+                  (vid,), edges, self.vertex_at(i),
+                  expected=f"{prim.name}: {self.ref.format(prim.boundary)}", found=found)
 
     def _describe(self, halves) -> str:
         if not halves:
@@ -527,6 +574,10 @@ class _Context:
         faces = compute_faces(g.xy, g.ends)
         left = [edges[h >> 1].right if h & 1 else edges[h >> 1].left for h in range(2 * len(edges))]
 
+        def uniform(cycle) -> str | None:
+            first = left[cycle[0]]
+            return first if all(left[h] == first for h in cycle) else None
+
         def labels_on(cycle) -> dict[str, list[int]]:
             out: dict[str, set[int]] = defaultdict(set)
             for h in cycle:
@@ -536,48 +587,55 @@ class _Context:
         def listing(groups) -> str:
             return "; ".join(f"{k} on {_edges(es)}" for k, es in groups.items())
 
-        def edges_of(cycle) -> str:
-            return _edges(sorted({h >> 1 for h in cycle}))
+        def where(f: int) -> str:
+            if f == UNBOUNDED:
+                return "the unbounded face (outside everything)"
+            return f"the face bounded by {_edges(sorted({h >> 1 for h in faces.cycles[faces.faces[f].outer]}))}"
+
+        def members(root: int) -> list[int]:
+            return [g.ids[v] for v in np.flatnonzero(faces.component == faces.component[root])]
 
         for f, face in enumerate(faces.faces):
             if f == UNBOUNDED:
-                label, where = self.ref.exterior, "the unbounded face (outside everything)"
+                label = self.ref.exterior
             else:
                 cyc = faces.cycles[face.outer]
-                groups = labels_on(cyc)
-                # Which side is wrong cannot be told from the face alone: name them all.
-                label = max(groups, key=lambda k: (len(groups[k]), k == self.ref.exterior))
-                where = f"the face bounded by {edges_of(cyc)}"
-                if len(groups) > 1:
+                label = uniform(cyc)
+                if label is None:
+                    groups = labels_on(cyc)
+                    # Which side is wrong cannot be told from the face alone: name them all.
+                    label = max(groups, key=lambda k: (len(groups[k]), k == self.ref.exterior))
                     involved = tuple(sorted({h >> 1 for h in cyc}))
-                    self.fail("face", f"{where} has different labels on its sides",
+                    self.fail("face", f"{where(f)} has different labels on its sides",
                               edges=involved, at=self.mid(involved[0]),
                               expected="one label on every side facing the face",
                               found=listing(groups))
             for hole in face.holes:
                 cyc = faces.cycles[hole]
-                groups = labels_on(cyc)
+                outside = uniform(cyc)
+                if outside == label:
+                    continue
                 root = int(g.ends[cyc[0] >> 1, 0])
-                members = [g.ids[v] for v in np.flatnonzero(faces.component == faces.component[root])]
+                vs = members(root)
                 involved = tuple(sorted({h >> 1 for h in cyc}))
-                if len(groups) == 1:
-                    outside = next(iter(groups))
-                    if outside != label:
-                        self.fail("nesting", f"the component of vertices {_some(members)} is drawn "
-                                  f"inside {where}, which is labelled '{label}', but its outside "
-                                  f"is labelled '{outside}'", tuple(members), involved,
-                                  self.vertex_at(root), expected=f"'{label}' around it",
-                                  found=f"'{outside}'")
-                elif f == UNBOUNDED:
+                if outside is not None:
+                    self.fail("nesting", f"the component of vertices {_some(vs)} is drawn "
+                              f"inside {where(f)}, which is labelled '{label}', but its outside "
+                              f"is labelled '{outside}'", tuple(vs), involved,
+                              self.vertex_at(root), expected=f"'{label}' around it",
+                              found=f"'{outside}'")
+                    continue
+                groups = labels_on(cyc)
+                if f == UNBOUNDED:
                     wrong = tuple(e for k, es in groups.items() if k != label for e in es)
-                    self.fail("face", f"the outside of the component of vertices {_some(members)} "
-                              f"is {where}, but some edges give it another label", tuple(members),
+                    self.fail("face", f"the outside of the component of vertices {_some(vs)} "
+                              f"is {where(f)}, but some edges give it another label", tuple(vs),
                               wrong, self.mid(wrong[0]), expected=f"'{label}' all around",
                               found=listing(groups))
                 else:
-                    self.fail("face", f"the outside of the component of vertices {_some(members)} "
-                              f"has different labels, inside {where} labelled '{label}'",
-                              tuple(members), involved, self.mid(involved[0]),
+                    self.fail("face", f"the outside of the component of vertices {_some(vs)} "
+                              f"has different labels, inside {where(f)} labelled '{label}'",
+                              tuple(vs), involved, self.mid(involved[0]),
                               expected=f"'{label}' all around", found=listing(groups))
 
 
@@ -609,11 +667,6 @@ def _direction_groups(dev: np.ndarray, eps: np.ndarray) -> list[list[int]]:
         else:
             groups[-1].append(k)
     return groups
-
-
-def _cyclic_increasing(angles: list[float]) -> bool:
-    n = len(angles)
-    return abs(sum((angles[(i + 1) % n] - angles[i]) % 360.0 for i in range(n)) - 360.0) < 1e-6
 
 
 # --- the command ----------------------------------------------------------------------------

@@ -526,3 +526,30 @@ def test_ggrun_check_limits_the_listing(tmp_path, capsys):
     assert code == 1 and n == every.count("length:") == 4 * len(d.edges) > 50
     assert few.count("length:") == 50 and f"{n - 50} not shown" in few
     assert ggrun(capsys, "check", svg, path)[1] == few        # deterministic
+
+
+def test_half_edges_out_of_their_primitives_order():
+    """Two labels 5° apart with different faces: within the tolerance each edge fits its own
+    label, yet around the vertex they come in the other order, which no primitive allows."""
+    from grammar_lang.example import EdgeLabel, Primitive
+    from grammar_lang.source import EdgeClass
+    from runtime.verifier import Reference
+    labels = (EdgeLabel("a", "X", "Y", 0.0, "0"), EdgeLabel("b", "Y", "Z", 5.0, "0"),
+              EdgeLabel("c", "Z", "X", 90.0, "0"))
+    ring = (0, 2, 4)                                   # a, b, c counter-clockwise
+    ref = Reference("swap", "X", ("X", "Y", "Z"), labels, (Primitive("p", ring),),
+                    (EdgeClass("0", 0.1, 100.0),), 10.0, 1.0)
+
+    def star(angles):
+        vs = (DVertex(0, 0.0, 0.0),) + tuple(
+            DVertex(k + 1, math.cos(math.radians(a)), math.sin(math.radians(a)))
+            for k, a in enumerate(angles))
+        es = tuple(DEdge(0, k + 1, lab.left, lab.right, "0") for k, lab in enumerate(labels))
+        return Drawing(vs, es)
+
+    def centre(failures):      # the leaves are no primitives here; only the centre matters
+        return [f for f in failures if f.kind == "ring" and f.vertices == (0,)]
+
+    assert centre(check_drawing(ref, star([1.0, 4.0, 90.0]))) == []
+    swapped = centre(check_drawing(ref, star([6.0, 1.0, 90.0])))
+    assert len(swapped) == 1 and "not in the order of primitive p" in swapped[0].message
