@@ -37,6 +37,9 @@ _SKIPPED = {"defs", "symbol", "clipPath", "mask", "marker", "pattern", "linearGr
             "animateTransform", "animateMotion"}
 _CONTAINERS = {"svg", "g", "a", "switch"}
 _INHERITED = ("fill", "stroke", "fill-rule", "color", "visibility", "data-label", "data-class")
+_QUOTED = r"(?:\"[^\"]*\"|'[^']*')"
+_EXTERNAL_DTD = re.compile(r"(<!DOCTYPE\s+[\w:.-]+)(\s+(?:PUBLIC\s+" + _QUOTED + r"\s+" + _QUOTED
+                           + r"|SYSTEM\s+" + _QUOTED + r"))", re.IGNORECASE)
 _STYLE_PROPS = {"fill", "stroke", "fill-rule", "color", "visibility", "display"}
 
 
@@ -109,8 +112,13 @@ def _parse_xml(text: str, file: str) -> _Node:
     parser.forbid_entities = True
     parser.forbid_external = True
     # The text is already decoded; a declared legacy encoding must not re-decode it.
-    data = re.sub(r"^(\s*<\?xml[^>]*?encoding\s*=\s*)([\"'])[^\"']*\2", r"\1\2utf-8\2",
-                  text, count=1).encode("utf-8")
+    cleaned = re.sub(r"^(\s*<\?xml[^>]*?encoding\s*=\s*)([\"'])[^\"']*\2", r"\1\2utf-8\2",
+                     text, count=1)
+    # Old editors name the SVG 1.1 DTD; blank the reference (keeping columns) rather than
+    # refuse the file. It is never fetched either way.
+    cleaned = _EXTERNAL_DTD.sub(lambda m: m.group(1) + re.sub(r"[^\n]", " ", m.group(2)),
+                                cleaned, count=1)
+    data = cleaned.encode("utf-8")
     source = xml.sax.xmlreader.InputSource()
     source.setByteStream(io.BytesIO(data))
     try:
