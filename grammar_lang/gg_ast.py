@@ -182,5 +182,14 @@ class ShapeFrom:
     span: Span
 
 
+@dataclass(frozen=True)
+class Rename:
+    """`rename OLD -> NEW`: a face label or class of the drawings taken with `shape from`."""
+
+    old: Word
+    new: Word
+    span: Span
+
+
 Stmt = (ExampleName | Import | Exterior | Face | ColourDef | ClassDef | Settings | PointDef
-        | Polygon | Polyline | Edge | PrimitiveDef | Decorate | ShapeFrom)
+        | Polygon | Polyline | Edge | PrimitiveDef | Decorate | ShapeFrom | Rename)

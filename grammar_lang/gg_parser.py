@@ -25,7 +25,7 @@ GRAMMAR = Path(__file__).with_name("gg_grammar.lark")
 
 STATEMENT_KEYWORDS = ("example", "import", "exterior", "face", "colour", "color", "class",
                       "options", "limits", "point", "polygon", "polyline", "loop", "edge",
-                      "border", "primitive", "decorate", "shape")
+                      "border", "primitive", "decorate", "shape", "rename")
 
 # Words for the grammar's regex terminals; string terminals are shown as their quoted text.
 _TERMINAL_WORDS = {
@@ -348,6 +348,10 @@ class _Build(Transformer):
 
     def shape(self, meta, children):
         return A.ShapeFrom(self._word(children[0]).text, _span(self.path, meta))
+
+    def rename(self, meta, children):
+        old, _, new = children
+        return A.Rename(self._word(old), self._word(new), _span(self.path, meta))
 
     def half_edge(self, meta, children):
         return A.HalfEdge(children[0], tuple(children[1:]), _span(self.path, meta))

@@ -9,7 +9,7 @@ error; a definition in an importing file overrides the imported one.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 from typing import Callable
@@ -54,6 +54,7 @@ class _Defs:
     settings: dict[str, dict[str, object]] = field(
         default_factory=lambda: {"options": {}, "limits": {}})
     svg: dict[int, ExampleSource] = field(default_factory=dict)   # id(ShapeFrom) → source
+    renames: dict[str, tuple[str, A.Rename, "_Unit"]] = field(default_factory=dict)
 
 
 def stdlib_modules() -> list[str]:
@@ -85,6 +86,7 @@ class _Resolver:
         self._flatten(root, [_key(path)])
         for stmt, unit in self.flat:
             self._define(stmt, unit)
+        self._adopt_drawings()
         return self._build(root)
 
     def _flatten(self, unit: _Unit, stack: list[str]) -> None:
@@ -182,6 +184,10 @@ class _Resolver:
                 d.points[stmt.name] = xy
         elif isinstance(stmt, A.ShapeFrom):
             d.svg[id(stmt)] = self._load_svg(stmt, unit)
+        elif isinstance(stmt, A.Rename):
+            old, new = _label_text(stmt.old, unit), _label_text(stmt.new, unit)
+            if self._claim("rename", old, stmt.span, unit, "the renaming of"):
+                d.renames[old] = (new, stmt, unit)
 
     def _load_svg(self, stmt: A.ShapeFrom, unit: _Unit) -> ExampleSource:
         path = unit.base / stmt.path
@@ -193,11 +199,26 @@ class _Resolver:
                         f"paths are relative to the .gg file's folder ({unit.base})",
                         source=unit.text)
         from .svg_import import import_svg
-        svg = import_svg(path)
-        for label in svg.face_labels:
-            if label != self.defs.exterior:
-                self.defs.faces.setdefault(label, None)
-        return svg
+        return import_svg(path)
+
+    def _adopt_drawings(self) -> None:
+        """Apply `rename` to the drawings, then make their face labels known."""
+        d = self.defs
+        names = {n for svg in d.svg.values() for n in (*svg.face_labels, *svg.classes)}
+        for old, (new, stmt, unit) in d.renames.items():
+            if old not in names:
+                hint = did_you_mean(old, names) or (
+                    "the drawings have: " + ", ".join(sorted(names)) if names else
+                    "rename applies to drawings taken with `shape from \"drawing.svg\"`")
+                raise error(f"no drawing has a face label or class '{old}'", stmt.old.span,
+                            hint, source=unit.text)
+        mapping = {old: new for old, (new, _, _) in d.renames.items()}
+        for key, svg in d.svg.items():
+            if mapping:
+                svg = d.svg[key] = _renamed(svg, mapping)
+            for label in svg.face_labels:
+                if label != d.exterior:
+                    d.faces.setdefault(label, None)
 
     # ---- pass 2: uses -------------------------------------------------------------------------
 
@@ -453,6 +474,27 @@ class _Resolver:
         props = S.check_block(stmt.props, S.DECORATIONS[kind], f"{kind} decoration",
                               self.defs.palette, unit.base, unit.text)
         return Decoration(kind, name, tuple(props.items()), span=stmt.span)
+
+
+def _renamed(svg: ExampleSource, mapping: dict[str, str]) -> ExampleSource:
+    """The drawing with its face labels and classes renamed (names not in `mapping` stay)."""
+    def f(name: str) -> str:
+        return mapping.get(name, name)
+
+    paint = []
+    for p in svg.paint:
+        if isinstance(p, Region):
+            paint.append(replace(p, label=f(p.label)))
+        elif isinstance(p, Stroke):
+            paint.append(replace(p, cls=f(p.cls)))
+        else:
+            paint.append(replace(p, left=f(p.left), right=f(p.right), cls=f(p.cls)))
+    classes: dict[str, EdgeClass] = {}
+    for name, cls in svg.classes.items():
+        classes.setdefault(f(name), replace(cls, name=f(name)))
+    return replace(svg, paint=paint, classes=classes,
+                   face_labels={f(k): v for k, v in svg.face_labels.items()},
+                   decorations=[replace(x, target=f(x.target)) for x in svg.decorations])
 
 
 def _label_text(word: A.Word, unit: _Unit) -> str:

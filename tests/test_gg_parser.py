@@ -279,6 +279,21 @@ def test_shape_from_svg_keeps_painters_order(tmp_path):
     assert src.paint[1].label == "#ff0000" and "#ff0000" in src.face_labels
 
 
+def test_rename_gives_drawing_names_readable_names(corpus_dir):
+    drawing = corpus_dir / "triangle-complex.svg"
+    src = parse_text(f'rename 1 -> rail\nshape from "{drawing}"\nrename "#C0F0FF" -> inside\n'
+                     "class rail { rigid }\ndecorate face inside { fill: red }\n", "r.gg")
+    assert list(src.face_labels) == ["inside"] and src.classes["rail"].rigid
+    assert {p.label for p in src.paint if isinstance(p, Region)} == {"inside"}
+    assert {p.cls for p in src.paint if isinstance(p, Stroke)} == {"rail"}
+    example = load_example_from(src)
+    assert _types(example)[2] == 2 and example.cls("rail").rigid
+    err = _error(f'shape from "{drawing}"\nrename "#c0f0fe" -> x')
+    assert "no drawing has" in err.diagnostics[0].message
+    assert "'#c0f0ff'" in err.diagnostics[0].hint
+    assert "shape from" in _error("rename a -> b\n" + SQUARE).diagnostics[0].hint
+
+
 # ---- imports ------------------------------------------------------------------------------------
 
 def test_every_stdlib_module_imports():
