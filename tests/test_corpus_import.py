@@ -9,12 +9,10 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
+from conftest import CORPUS
 from grammar_lang.planar import build_planar_graph
 from grammar_lang.svg_import import import_svg
 
-CORPUS = Path(__file__).resolve().parents[2] / "shared" / "corpus" / "examples"
-if not CORPUS.is_dir():
-    CORPUS = Path("/work/shared/corpus/examples")
 SVGS = sorted(CORPUS.glob("*.svg"))
 
 
@@ -87,3 +85,11 @@ def test_corpus_transformed_copy_matches(tmp_path):
     expected = json.loads(svg.with_suffix(".json").read_text())
     expected["vertices"] = [[2 * x + 10, 2 * y - 20] for x, y in expected["vertices"]]
     match_graphs(graph, expected)
+
+
+@pytest.mark.parametrize("svg", SVGS, ids=[p.stem for p in SVGS])
+def test_corpus_json_as_explicit_edges_rebuilds_itself(svg: Path):
+    """The JSON read as explicit edges (left/right stated) goes through the same builder."""
+    from grammar_lang.example_json import load_example_json
+    path = svg.with_suffix(".json")
+    match_graphs(build_planar_graph(load_example_json(path)), json.loads(path.read_text()))
