@@ -1,0 +1,328 @@
+"""Algorithm 1: build the concrete hierarchy from the primitives and find rules as it grows.
+
+Each new graph is, in this order: a duplicate (skipped); over the half-edge limit (§5.7); a
+holder of an earlier rule's left side (reducible, dropped with all it would grow into, §5.2.1);
+complete (a starter rule, §5.3.1); matched by simpler graphs (a rule, Algorithm 2); proven to
+have no complete irreducible descendants (pruned, §5.6); or else irreducible, kept as a piece
+for later matches and expanded in the next generation. After each generation every irreducible
+graph is tried again as a left side, since simpler graphs may have appeared since (this is how
+rules whose right side holds descendants of the left are found, §5.4-5.5).
+
+The grammar is complete when a generation leaves nothing to expand and no limit cut anything
+off: then every graph of the abstract hierarchy is reducible, pruned or a duplicate, so every
+complete graph reduces to ∅ (§5.2).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from grammar_lang import __version__
+from grammar_lang.example import Example
+from grammar_lang.graph import EMPTY, Side
+from grammar_lang.rules import Grammar, Header, Rule
+
+from . import grouping
+from .gluing import Graph, block_slots, children
+from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
+from .matching import Match, Matcher, Piece
+from .occurrence import Host, Pattern, contains
+from .pruning import TurnAnalysis
+
+Progress = Callable[[int, int, int], None]     # (generation, hierarchy graphs, rules)
+
+
+@dataclass(frozen=True)
+class Report:
+    example: str
+    primitives: int
+    blocks: int
+    hierarchy_graphs: int
+    irreducible: int
+    pruned: int
+    rules: int
+    starters: int
+    generations: int
+    seconds: float
+    complete: bool
+    limits_hit: tuple[str, ...] = ()
+    remaining: int = 0
+    remaining_boundaries: tuple[str, ...] = ()
+
+    @property
+    def verdict(self) -> str:
+        if self.complete:
+            return "complete: every locally similar graph can be built"
+        return (f"limited ({', '.join(self.limits_hit) or 'search cut short'}): "
+                f"{self.remaining} irreducible graphs remain")
+
+    def as_dict(self) -> dict:
+        d = asdict(self)
+        d["verdict"] = self.verdict
+        return d
+
+
+@dataclass(frozen=True)
+class CompileResult:
+    grammar: Grammar
+    report: Report
+
+
+@dataclass
+class _Rule:
+    lhs: Graph
+    pattern: Pattern
+    exceptions: tuple[Pattern, ...]      # §5.4: right-side graphs that hold the left side
+    rule: Rule
+
+
+@dataclass
+class _State:
+    rules: list[_Rule] = field(default_factory=list)
+    by_prim: dict[int, list[int]] = field(default_factory=dict)
+    limits_hit: set[str] = field(default_factory=set)
+
+
+class Inference:
+    def __init__(self, example: Example, progress: Progress | None = None):
+        self.ex = example
+        self.rings = [p.ring for p in example.primitives]
+        self.ring_len = [len(r) for r in self.rings]
+        opts = example.options
+        self.limits = opts.limits
+        self.loops = not opts.no_loops
+        self.hier = Hierarchy(self.ring_len)
+        self.matcher = Matcher(splice=not (opts.connected or opts.no_loops))
+        self.turns = TurnAnalysis(self.rings)
+        self.state = _State()
+        self.progress = progress
+        self.blocks = grouping.blocks(self.rings)
+        self.slots = block_slots(self.blocks, self.rings)
+        self.frontier: list[int] = []
+        self.t0 = time.perf_counter()
+        self.generation = 0
+        for lab in range(len(example.labels)):
+            a = 2 * lab
+            self.matcher.add(Piece(-1 - lab, ((a + 1, 0), (a, 1)), (2, -1 - lab)))
+
+    # --- driver -----------------------------------------------------------------------------
+
+    def run(self) -> CompileResult:
+        self.generation = 1
+        for b in self.blocks:
+            self._process(b, 1, None, tuple(range(len(b.verts))))
+        self._recheck()
+        self._tick()
+        while self.frontier and not self._out_of_time():
+            if self.generation >= self.limits.generations:
+                self.state.limits_hit.add("generations")
+                break
+            self.generation += 1
+            current, self.frontier = self.frontier, []
+            for nid in current:
+                node = self.hier.nodes[nid]
+                if node.status != KEPT:
+                    continue
+                for _, child, anchors in children(node.graph, self.blocks, self.rings,
+                                                  self.loops, self.slots):
+                    self._process(child, self.generation, nid, anchors)
+                    if self._out_of_time() or self._too_many():
+                        break
+                if self._out_of_time() or self._too_many():
+                    break
+            self._recheck()
+            self._tick()
+            if self._too_many():
+                break
+        return self._result()
+
+    def _tick(self) -> None:
+        if self.progress:
+            self.progress(self.generation, len(self.hier.nodes), len(self.state.rules))
+
+    def _out_of_time(self) -> bool:
+        if time.perf_counter() - self.t0 > self.limits.seconds:
+            self.state.limits_hit.add("time")
+            return True
+        return False
+
+    def _too_many(self) -> bool:
+        if len(self.hier.nodes) >= self.limits.graphs:
+            self.state.limits_hit.add("graphs")
+            return True
+        return False
+
+    # --- one new graph ----------------------------------------------------------------------
+
+    def _process(self, g: Graph, gen: int, parent: int | None, anchors) -> None:
+        node, new = self.hier.lookup_or_add(g, gen, parent)
+        if not new:
+            return
+        if g.n_half > self.limits.half_edges:
+            node.status = OVER
+            self.state.limits_hit.add("half-edges")
+            return
+        if self._holds_left_side(g, anchors):
+            node.status = REDUCIBLE
+            return
+        if g.is_complete:
+            self._add_rule(node, None)
+            return
+        match = self.matcher.find(g.tokens(self.rings), node.rank)
+        node.checked = self.matcher.version
+        if match is not None:
+            self._add_rule(node, match)
+            return
+        if self.turns.dead_end(g):
+            node.status = PRUNED
+            return
+        self._keep(node)
+
+    def _keep(self, node: Node) -> None:
+        node.status = KEPT
+        self.matcher.add(Piece(node.id, node.graph.tokens(self.rings), node.rank))
+        self.frontier.append(node.id)
+
+    def _holds_left_side(self, g: Graph, anchors, rules=None) -> bool:
+        host = Host(g.verts, g.edges)
+        cand: set[int] = set()
+        for a in anchors:
+            cand.update(self.state.by_prim.get(g.verts[a], ()))
+        for r in sorted(cand) if rules is None else rules:
+            rr = self.state.rules[r]
+            if contains(rr.pattern, host, anchors) and not any(
+                    contains(e, host) for e in rr.exceptions):
+                return True
+        return False
+
+    def _recheck(self) -> None:
+        """Try every irreducible graph again as a left side against newer, simpler graphs."""
+        for node in self.hier.kept():
+            if node.status != KEPT or node.checked == self.matcher.version:
+                continue
+            match = self.matcher.find(node.graph.tokens(self.rings), node.rank)
+            node.checked = self.matcher.version
+            if match is not None:
+                self.matcher.remove(node.id)
+                self._add_rule(node, match)
+
+    # --- rules ------------------------------------------------------------------------------
+
+    def _add_rule(self, node: Node, match: Match | None) -> None:
+        g = node.graph
+        lhs = g.side()
+        if match is None:
+            rhs = EMPTY
+            exceptions: tuple[Pattern, ...] = ()
+        else:
+            rhs, graphs = self._right_side(g, match)
+            # A rule that does not shrink the vertex count reduces a graph holding its left
+            # side only when the graph holds none of its right-side graphs (§5.4: otherwise
+            # the rule may just turn R back into itself, or swap two equal-sized parts).
+            exceptions = ()
+            if len(rhs.vertices) >= len(g.verts):
+                exceptions = tuple(Pattern.of(h) for h in graphs)
+        starter = match is None
+        name = f"{'s' if starter else 'r'}{len(self.state.rules)}"
+        rule = Rule(name, lhs, rhs, priority=0, weight=1.0)
+        idx = len(self.state.rules)
+        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule))
+        for p in sorted(set(g.verts)):
+            self.state.by_prim.setdefault(p, []).append(idx)
+        node.status = RULE
+        if not exceptions and not starter:
+            if len(g.verts) == 1:
+                self.turns.forbid_primitive(g.verts[0])
+            elif len(g.verts) == 2 and len(g.edges) == 1:
+                v, i, w, j = g.edges[0]
+                self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
+        self._drop_holders(idx, node.id)
+
+    def _drop_holders(self, idx: int, lhs_id: int) -> None:
+        """Irreducible graphs that hold the new left side are reducible now (with §5.4's
+        exception for graphs that hold one of the rule's own right-side graphs)."""
+        for other in self.hier.kept():
+            if other.id == lhs_id:
+                continue
+            g = other.graph
+            if self._holds_left_side(g, range(len(g.verts)), [idx]):
+                other.status = REDUCIBLE
+                self.matcher.remove(other.id)
+
+    def _right_side(self, lhs: Graph, match: Match) -> tuple[Side, list[Graph]]:
+        m = len(lhs.gaps)
+        items: list = [None] * m
+        verts: list[int] = []
+        edges: list = []
+        wires: list[int] = []
+        graphs: list[Graph] = []
+        for piece, pos in match:
+            if piece.node < 0:
+                e = len(wires)
+                wires.append(2 * (-1 - piece.node))
+                items[pos[0]] = (-1 - e, 1)       # ā end
+                items[pos[1]] = (-1 - e, 0)       # a end
+                continue
+            h = self.hier.nodes[piece.node].graph
+            graphs.append(h)
+            off = len(verts)
+            verts.extend(h.verts)
+            edges.extend((v + off, i, w + off, j) for v, i, w, j in h.edges)
+            for (slot, _), k in zip(h.gaps, pos):
+                items[k] = (slot[0] + off, slot[1])
+        boundary: list = []
+        from grammar_lang import boundary as bd
+        for k, (_, n) in enumerate(lhs.gaps):
+            boundary.append(items[k])
+            boundary.extend(bd.turns(n))
+        return Side(tuple(verts), tuple(sorted(edges)), tuple(boundary),
+                    wires=tuple(wires)), graphs
+
+    # --- result -----------------------------------------------------------------------------
+
+    def _result(self) -> CompileResult:
+        st = self.state
+        front = {i for i in self.frontier if self.hier.nodes[i].status == KEPT}
+        remaining = [n for n in self.hier.nodes
+                     if n.status == OVER or (n.status == KEPT and n.id in front)]
+        limited = bool(st.limits_hit) or bool(front)
+        shown = sorted(remaining, key=lambda n: n.rank)[:5]
+        rules = tuple(r.rule for r in st.rules)
+        report = Report(
+            example=self.ex.name,
+            primitives=len(self.rings),
+            blocks=len(self.blocks),
+            hierarchy_graphs=len(self.hier.nodes),
+            irreducible=self.hier.count(KEPT),
+            pruned=self.hier.count(PRUNED),
+            rules=sum(1 for r in rules if not r.is_starter),
+            starters=sum(1 for r in rules if r.is_starter),
+            generations=self.generation,
+            seconds=round(time.perf_counter() - self.t0, 4),
+            complete=not limited,
+            limits_hit=tuple(sorted(st.limits_hit)),
+            remaining=len(remaining),
+            remaining_boundaries=tuple(self.ex.format(n.graph.string(self.rings))
+                                       for n in shown),
+        )
+        return CompileResult(Grammar(header(self.ex, not limited), rules), report)
+
+
+def header(ex: Example, complete: bool) -> Header:
+    digest = ""
+    try:
+        digest = hashlib.sha256(Path(ex.path).read_bytes()).hexdigest()
+    except OSError:
+        pass
+    return Header(source=ex.path, source_hash=digest, compiler_version=__version__,
+                  exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
+                  labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
+                  decorations=ex.decorations, complete=complete)
+
+
+def compile_example(example: Example, progress: Progress | None = None) -> CompileResult:
+    return Inference(example, progress).run()

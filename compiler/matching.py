@@ -1,0 +1,188 @@
+"""Algorithm 2: find simpler graphs whose boundaries, spliced together, equal a given boundary.
+
+Boundaries are token gaps: (half-edge token, net turns after it). A piece R matches part of a
+target T when its half-edges map in cyclic order onto some of T's half-edges with equal tokens,
+and the net turns of T between two consecutive matched half-edges equal R's gap there. Each
+run of unmatched half-edges between them is a closed substring of its own, found recursively:
+its inner turns are T's, and its closing gap is whatever makes it wind once (P − N = 1). That is
+the paper's `∨ⁿ ∂L ∧ⁿ` freedom: a splice `A|B → A∧ⁿB∨ⁿ⁺¹` may put any number of turns on either
+side of the spliced-in substring, so only the total between matched half-edges is constrained.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+from typing import Sequence
+
+Toks = tuple[tuple[int, int], ...]
+
+
+@dataclass(frozen=True)
+class Piece:
+    """A graph usable on the simpler side: a hierarchy graph (`node` ≥ 0) or an edge graph
+    (`node` = -1 - label). `rank` orders by complexity: (half-edges, insertion order)."""
+
+    node: int
+    toks: Toks
+    rank: tuple[int, int]
+    counts: tuple[tuple[int, int], ...] = field(compare=False, default=())
+
+
+Match = tuple[tuple[Piece, tuple[int, ...]], ...]   # piece, target index of each of its half-edges
+
+
+def cyclic_canon(toks: Toks) -> Toks:
+    if not toks:
+        return toks
+    return min(toks[i:] + toks[:i] for i in range(len(toks)))
+
+
+class Matcher:
+    """The pieces of the current hierarchy, indexed for Algorithm 2."""
+
+    def __init__(self, splice: bool, budget: int = 20000):
+        self.splice = splice          # False: no rule may splice several graphs (Appendix A)
+        self.budget = budget
+        self.pieces: dict[int, Piece] = {}
+        self.by_string: dict[Toks, list[int]] = {}
+        self.by_token: dict[int, list[int]] = {}
+        self.version = 0
+        self._memo: dict[Toks, tuple[int, Match | None]] = {}
+        self._steps = 0
+
+    def add(self, piece: Piece) -> None:
+        c = Counter(t for t, _ in piece.toks)
+        piece = Piece(piece.node, piece.toks, piece.rank, tuple(sorted(c.items())))
+        self.pieces[piece.node] = piece
+        self.by_string.setdefault(cyclic_canon(piece.toks), []).append(piece.node)
+        for t in sorted(c):
+            self.by_token.setdefault(t, []).append(piece.node)
+        self.version += 1
+
+    def remove(self, node: int) -> None:
+        # Lists keep the id; lookups skip ids no longer in `pieces`.
+        self.pieces.pop(node, None)
+
+    # --- the search ----------------------------------------------------------------------
+
+    def find(self, target: Toks, rank: tuple[int, int]) -> Match | None:
+        """A way to build `target` from pieces simpler than `rank`, or None."""
+        for node in self.by_string.get(cyclic_canon(target), ()):
+            p = self.pieces.get(node)
+            if p is not None and p.rank < rank:
+                pos = _align_whole(p.toks, target)
+                if pos is not None:
+                    return ((p, pos),)
+        if not self.splice or len(target) < 2:
+            return None
+        self._steps = 0
+        try:
+            return self._solve(target, len(target) - 1)
+        except _OutOfBudget:
+            return None
+
+    def _solve(self, target: Toks, max_half: int) -> Match | None:
+        hit = self._memo.get((target, max_half))
+        if hit is not None and (hit[1] is not None or hit[0] == self.version):
+            return hit[1]
+        res = self._search(target, max_half)
+        self._memo[(target, max_half)] = (self.version, res)
+        return res
+
+    def _candidates(self, target: Toks, max_half: int) -> list[Piece]:
+        have = Counter(t for t, _ in target)
+        ids: set[int] = set()
+        for t in have:
+            ids.update(self.by_token.get(t, ()))
+        out = []
+        for node in ids:
+            p = self.pieces.get(node)
+            if p is None or len(p.toks) > max_half:
+                continue
+            if all(have.get(t, 0) >= n for t, n in p.counts):
+                out.append(p)
+        out.sort(key=lambda p: (-len(p.toks), p.rank))
+        return out
+
+    def _search(self, target: Toks, max_half: int) -> Match | None:
+        m = len(target)
+        prefix = [0]
+        for _, n in target:
+            prefix.append(prefix[-1] + n)
+        total = prefix[-1]
+
+        def turns(a: int, b: int) -> int:
+            """Net turns from just after target[a] to just before target[b], cyclically."""
+            if b > a:
+                return prefix[b] - prefix[a]
+            return total - prefix[a] + prefix[b]
+
+        for piece in self._candidates(target, min(max_half, m)):
+            r = piece.toks
+            p = len(r)
+            for k0 in range(m):
+                if target[k0][0] != r[0][0]:
+                    continue
+                for pos in _placements(r, target, k0, turns):
+                    self._steps += 1
+                    if self._steps > self.budget:
+                        raise _OutOfBudget
+                    rest = self._fill(target, pos, p)
+                    if rest is not None:
+                        return ((piece, pos),) + rest
+        return None
+
+    def _fill(self, target: Toks, pos: tuple[int, ...], p: int) -> Match | None:
+        m = len(target)
+        out: Match = ()
+        for j in range(p):
+            a, b = pos[j], pos[(j + 1) % p]
+            idx = [(a + d) % m for d in range(1, ((b - a) % m) or (m if p == 1 else 0))]
+            if not idx:
+                continue
+            inner = [target[k][1] for k in idx[:-1]]
+            sub = tuple((target[k][0], target[k][1]) for k in idx[:-1])
+            sub += ((target[idx[-1]][0], 1 - sum(inner)),)
+            found = self._solve(sub, len(sub))
+            if found is None:
+                return None
+            out += tuple((pc, tuple(idx[q] for q in ps)) for pc, ps in found)
+        return out
+
+
+class _OutOfBudget(Exception):
+    pass
+
+
+def _placements(r: Toks, target: Toks, k0: int, turns):
+    """Cyclically increasing placements of r's half-edges in target, r[0] at k0."""
+    m, p = len(target), len(r)
+    pos = [k0]
+
+    def rec(j: int):
+        if j == p:
+            if turns(pos[-1], k0) == r[-1][1] if p > 1 else r[0][1] == 1:
+                yield tuple(pos)
+            return
+        last = pos[-1]
+        for d in range(1, m):
+            k = (k0 + d) % m
+            if (k - k0) % m <= (last - k0) % m:
+                continue
+            if m - (k - k0) % m < p - j:
+                break
+            if target[k][0] == r[j][0] and turns(last, k) == r[j - 1][1]:
+                pos.append(k)
+                yield from rec(j + 1)
+                pos.pop()
+
+    yield from rec(1)
+
+
+def _align_whole(r: Toks, target: Toks) -> tuple[int, ...] | None:
+    m = len(target)
+    for k in range(m):
+        if all(target[(k + j) % m] == r[j] for j in range(m)):
+            return tuple((k + j) % m for j in range(m))
+    return None

@@ -1,0 +1,161 @@
+"""`ggc verify`: check a grammar against every complete graph up to N primitives.
+
+The complete graphs are enumerated independently of the grammar: every connected graph glued
+from the primitives (branch gluing, and loop gluing of consecutive half-edges, companion §3.1)
+with at most N vertices, without duplicates. Each complete one must reduce to ∅ by applying the
+rules destructively (§5.2). Components reduce independently, so the search is a memoised
+recursion over connected components: a component reduces when some rule application turns it
+into components that all reduce.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+from grammar_lang.rules import Grammar
+
+from .apply import apply, side_graph
+from .canon import Key, canonical_key, split
+from .gluing import Graph, block_slots, children, primitive_graph
+from .occurrence import Host, Pattern, matches
+
+
+@dataclass
+class VerifyResult:
+    checked: int = 0
+    failed: list[Graph] = field(default_factory=list)
+    enumeration_capped: bool = False
+    skipped_rules: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.failed
+
+
+def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool = True,
+                    cap: int = 200000) -> tuple[list[Graph], bool]:
+    """Every complete connected graph with at most `max_prims` vertices (and whether the
+    enumeration stopped at `cap` graphs)."""
+    ring_len = [len(r) for r in rings]
+    prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
+    slots = block_slots(prims, rings)
+    seen: set[Key] = set()
+    out: list[Graph] = []
+    frontier: list[Graph] = []
+    for g in prims:
+        k = canonical_key(g, ring_len)
+        if k not in seen:
+            seen.add(k)
+            (out if g.is_complete else frontier).append(g)
+    mult: dict[int, int] = {}
+    for r in rings:
+        for t in set(r):
+            mult[t] = max(mult.get(t, 0), r.count(t))
+    widest = max((len(r) for r in rings), default=1) or 1
+
+    def too_big(g: Graph) -> bool:
+        """A lower bound on the vertices still needed: open half-edges of token t beyond the
+        open ones of token t̄ must each meet a new vertex's t̄ slot."""
+        count: dict[int, int] = {}
+        for (v, i), _ in g.gaps:
+            t = rings[g.verts[v]][i]
+            count[t] = count.get(t, 0) + 1
+        need, total = 0, 0
+        for t, c in count.items():
+            extra = c - count.get(t ^ 1, 0)
+            if extra > 0:
+                if t ^ 1 not in mult:
+                    return True
+                need = max(need, -(-extra // mult[t ^ 1]))
+                total += extra
+        return len(g.verts) + max(need, -(-total // widest)) > max_prims
+
+    while frontier:
+        nxt: list[Graph] = []
+        for g in frontier:
+            for kind, child, _ in children(g, prims, rings, loops, slots):
+                if len(child.verts) > max_prims or too_big(child):
+                    continue
+                k = canonical_key(child, ring_len)
+                if k in seen:
+                    continue
+                seen.add(k)
+                if len(seen) > cap:
+                    return out, True
+                (out if child.is_complete else nxt).append(child)
+        frontier = nxt
+    return out, False
+
+
+class Reducer:
+    def __init__(self, grammar: Grammar, budget: int = 20000):
+        self.rings = grammar.rings
+        self.ring_len = [len(r) for r in self.rings]
+        self.rules = []
+        self.skipped: list[str] = []
+        for r in grammar.rules:
+            if len(r.lhs.components()) != 1 or r.lhs.wires:
+                self.skipped.append(r.name)
+                continue
+            self.rules.append((r, Pattern.of(side_graph(r.lhs))))
+        self.memo: dict[Key, bool] = {}
+        self.budget = budget
+        self.steps = 0
+
+    def reduces(self, g: Graph) -> bool:
+        self.steps = 0
+        ok = self._reduces(g)
+        # A failure may only mean "every way down passed through a graph then in progress";
+        # such failures are not final, so only successes are remembered across graphs.
+        self.memo = {k: v for k, v in self.memo.items() if v}
+        return ok
+
+    def _reduces(self, g: Graph) -> bool:
+        key = canonical_key(g, self.ring_len)
+        hit = self.memo.get(key)
+        if hit is not None:
+            return hit
+        self.memo[key] = False        # in progress: a cycle back here is no way down
+        self.steps += 1
+        ok = self.steps <= self.budget and self._try(g)
+        self.memo[key] = ok
+        return ok
+
+    def _try(self, g: Graph) -> bool:
+        host = Host(g.verts, g.edges)
+        for rule, pat in self.rules:
+            for img in matches(pat, host):
+                h = Host(g.verts, g.edges)
+                apply(rule.lhs, rule.rhs, img, h)
+                live = h.live()
+                idx = {v: k for k, v in enumerate(live)}
+                edges = sorted({tuple(sorted(((idx[v], i), (idx[w], j))))
+                                for v in live for i, (w, j) in h.part[v].items()})
+                flat = [(a[0], a[1], b[0], b[1]) for a, b in edges]
+                parts = split([h.verts[v] for v in live], flat)
+                if any(len(p.verts) and _open(p, self.ring_len) for p in parts):
+                    continue   # a malformed result (a rule with inconsistent sides)
+                if all(self._reduces(p) for p in parts):
+                    return True
+        return False
+
+
+def _open(g: Graph, ring_len) -> bool:
+    glued = {(v, i) for v, i, _, _ in g.edges} | {(w, j) for _, _, w, j in g.edges}
+    return len(glued) != sum(ring_len[p] for p in g.verts)
+
+
+def verify(grammar: Grammar, max_prims: int = 10, progress: Callable[[int, int], None] | None = None,
+           cap: int = 200000) -> VerifyResult:
+    loops = not grammar.header.options.no_loops
+    graphs, capped = complete_graphs(grammar.rings, max_prims, loops, cap)
+    red = Reducer(grammar)
+    res = VerifyResult(enumeration_capped=capped, skipped_rules=red.skipped)
+    for n, g in enumerate(sorted(graphs, key=lambda g: (len(g.verts), g.verts, g.edges))):
+        res.checked += 1
+        if not red.reduces(g):
+            res.failed.append(g)
+        if progress:
+            progress(n + 1, len(graphs))
+    return res
