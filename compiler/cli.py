@@ -22,6 +22,21 @@ def build_parser() -> ArgumentParser:
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.add_argument("--ascii", action="store_true", help="ASCII boundary strings")
     common_flags(p)
+
+    p = sub.add_parser("compile", help="infer a grammar from an example and write a .ggr file")
+    p.add_argument("file", help="the example (.gg or .svg)")
+    p.add_argument("-o", "--output", metavar="OUT.ggr",
+                   help="where to write the rules (default: beside the example)")
+    p.add_argument("--force", action="store_true",
+                   help="overwrite a .ggr file even if it was edited by hand")
+    p.add_argument("--report", metavar="FILE.json", help="also write the summary as JSON")
+    common_flags(p)
+
+    p = sub.add_parser("verify", help="check that a grammar reduces every complete graph to ∅")
+    p.add_argument("file", help="the rule file (.ggr)")
+    p.add_argument("--max-primitives", type=int, default=8, metavar="N",
+                   help="check every complete graph of at most N primitives (default 8)")
+    common_flags(p)
     return parser
 
 
@@ -30,6 +45,12 @@ def _main(argv: Sequence[str]) -> int:
     if args.command in ("check", "primitives"):
         from . import inspect_cmd
         return inspect_cmd.run(args)
+    if args.command == "compile":
+        from . import compile_cmd
+        return compile_cmd.run_compile(args)
+    if args.command == "verify":
+        from . import compile_cmd
+        return compile_cmd.run_verify(args)
     raise AssertionError(args.command)
 
 

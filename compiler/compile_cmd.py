@@ -1,0 +1,114 @@
+"""`ggc compile` and `ggc verify`: the front of inference and of its independent check."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from rich.console import Console
+from rich.table import Table
+
+from grammar_lang.diagnostics import Span, error
+from grammar_lang.fileio import atomic_write
+
+from .infer import CompileResult, Report, compile_example
+
+
+def _progress_bar(err: Console, title: str):
+    """A rich progress display on a terminal; nothing when stderr is not one."""
+    if not sys.stderr.isatty():
+        return None, None
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(),
+                   TextColumn("{task.fields[info]}"), TimeElapsedColumn(), console=err,
+                   transient=True)
+    task = bar.add_task(title, total=None, info="")
+    return bar, task
+
+
+def run_compile(args) -> int:
+    from grammar_lang.ggr_file import write_ggr
+    from grammar_lang.loader import load_example
+
+    example = load_example(args.file)
+    out = Console(highlight=False, soft_wrap=True)
+    err = Console(stderr=True, highlight=False, soft_wrap=True)
+    for note in example.notes:
+        err.print(note.render(), markup=False)
+    target = Path(args.output) if args.output else Path(args.file).with_suffix(".ggr")
+    if args.report and Path(args.report).resolve() == target.resolve():
+        raise error("the report and the rule file would be the same file", Span(args.report),
+                    "give --report a .json path")
+    bar, task = _progress_bar(err, f"compiling {Path(args.file).name}")
+
+    def progress(gen: int, graphs: int, rules: int) -> None:
+        if bar is not None:
+            bar.update(task, info=f"generation {gen}, {graphs} graphs, {rules} rules")
+
+    if bar is not None:
+        with bar:
+            result = compile_example(example, progress)
+    else:
+        result = compile_example(example)
+    write_ggr(target, result.grammar, force=args.force)
+    if args.report:
+        data = result.report.as_dict()
+        data["output"] = str(target)
+        atomic_write(Path(args.report), json.dumps(data, indent=2, ensure_ascii=False) + "\n")
+    out.print(summary_table(result, str(target)))
+    return 0
+
+
+def summary_table(result: CompileResult, target: str) -> Table:
+    r: Report = result.report
+    t = Table(title=f"{r.example} → {target}", show_header=False)
+    t.add_column("what")
+    t.add_column("value")
+    t.add_row("primitives", f"{r.primitives} ({r.blocks} blocks after grouping)")
+    t.add_row("hierarchy graphs", f"{r.hierarchy_graphs} ({r.irreducible} irreducible, "
+              f"{r.pruned} pruned, {r.generations} generations)")
+    t.add_row("rules", f"{r.rules} + {r.starters} starter{'s' if r.starters != 1 else ''}")
+    t.add_row("time", f"{r.seconds:.2f} s")
+    t.add_row("result", r.verdict)
+    if not r.complete and r.remaining_boundaries:
+        t.add_row("e.g.", ", ".join(r.remaining_boundaries))
+    return t
+
+
+def run_verify(args) -> int:
+    from grammar_lang.ggr_parser import load_ggr
+
+    from .verify import verify
+
+    grammar = load_ggr(args.file)
+    out = Console(highlight=False, soft_wrap=True)
+    err = Console(stderr=True, highlight=False, soft_wrap=True)
+    if args.max_primitives < 1:
+        raise error("--max-primitives must be at least 1", Span(args.file))
+    bar, task = _progress_bar(err, f"verifying {Path(args.file).name}")
+
+    def progress(done: int, total: int) -> None:
+        if bar is not None:
+            bar.update(task, total=total, completed=done, info=f"{done}/{total} graphs")
+
+    if bar is not None:
+        with bar:
+            res = verify(grammar, args.max_primitives, progress)
+    else:
+        res = verify(grammar, args.max_primitives)
+    names = [p.name for p in grammar.header.primitives]
+    for name in res.skipped_rules:
+        err.print(f"note: rule '{name}' has a disconnected left side; verify does not apply it",
+                  markup=False)
+    if res.enumeration_capped:
+        err.print("note: stopped enumerating at the graph cap; lower --max-primitives for a "
+                  "complete check", markup=False)
+    out.print(f"checked {res.checked} complete graphs with at most {args.max_primitives} "
+              f"primitives: {res.checked - len(res.failed)} reduce to ∅, "
+              f"{len(res.failed)} failed", markup=False)
+    for g in res.failed[:20]:
+        prims = ", ".join(names[p] for p in g.verts)
+        out.print(f"  failed: {len(g.verts)} vertices [{prims}], edges {list(g.edges)}",
+                  markup=False)
+    return 0 if res.ok else 1
