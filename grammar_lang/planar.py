@@ -142,18 +142,22 @@ class _Builder:
         cover = np.zeros((count, len(regions)), dtype=bool)
         if not regions:
             return cover
-        boxes = shapely.STRtree(shapely.points(samples[1:]))
+        rings = [[np.asarray(ring, dtype=float) for ring in item.paint.rings if len(ring) > 2]
+                 for item in regions]
+        boxes = shapely.box(*np.array([np.r_[np.vstack(rs).min(axis=0), np.vstack(rs).max(axis=0)]
+                                       if rs else [np.nan] * 4 for rs in rings]).T)
+        # Which face samples fall in which region's bounding box, in one spatial query.
+        region_of, sample = shapely.STRtree(shapely.points(samples[1:])).query(
+            boxes, predicate="intersects")
+        order = np.argsort(region_of, kind="stable")
+        region_of, sample = region_of[order], sample[order] + 1
+        bounds = np.searchsorted(region_of, np.arange(len(regions) + 1))
         for r, item in enumerate(regions):
-            rings = [np.asarray(ring, dtype=float) for ring in item.paint.rings if len(ring) > 2]
-            if not rings:
-                continue
-            allp = np.vstack(rings)
-            box = shapely.box(*allp.min(axis=0), *allp.max(axis=0))
-            hit = boxes.query(box, predicate="intersects") + 1
+            hit = sample[bounds[r]:bounds[r + 1]]
             if len(hit) == 0:
                 continue
-            a = np.vstack(rings)
-            b = np.vstack([np.roll(ring, -1, axis=0) for ring in rings])
+            a = np.vstack(rings[r])
+            b = np.vstack([np.roll(ring, -1, axis=0) for ring in rings[r]])
             w = winding(samples[hit], a, b)
             cover[hit, r] = (w % 2 != 0) if item.paint.evenodd else (w != 0)
         return cover

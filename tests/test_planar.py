@@ -108,6 +108,19 @@ def test_evenodd_hole_and_nonzero_fill():
     assert opposite[((3.0, 3.0), (6.0, 3.0))][:2] == ("exterior", "a")
 
 
+def test_crossings_with_hidden_lines_leave_no_vertex_behind():
+    g = build(Stroke(((2, -1), (2, 1))), Region((rect(1, -2, 3, 2),), "b"),
+              Region((rect(0, 0, 4, 4),), "a"))
+    assert (2.0, 0.0) not in g.vertices
+    assert edge_map(g)[((1.0, 0.0), (3.0, 0.0))][:2] == ("a", "b")
+    assert (2.0, -1.0) not in g.vertices
+
+
+def test_merge_distance_zero_keeps_every_distinct_point():
+    g = build(Stroke(((0, 0), (10, 0))), Stroke(((10.001, 0), (20, 0))), merge=0.0)
+    assert len(g.vertices) == 4
+
+
 def test_strokes_inside_regions_and_nested_components():
     g = build(Region((rect(0, 0, 10, 10),), "a"), Stroke(((2, 2), (5, 5))),
               Stroke(rect(6, 6, 8, 8), closed=True))
