@@ -28,6 +28,8 @@ from .schedule import Schedule
 
 # Stop after this many proposals in a row that could not be placed or were refused.
 MAX_STALL = 500
+# The level key under which edits outside the rules are counted; no schedule level uses it.
+EDIT_LEVEL = -(2 ** 62)
 
 
 @dataclass(frozen=True)
@@ -168,6 +170,23 @@ class Engine:
         self.host.redo_ops(list(rec.ops))
         self.applied_by_level[rec.priority] = self.applied_by_level.get(rec.priority, 0) + 1
         self.history.append(rec)
+        return rec
+
+    # --- edits outside the rules (the REPL's reset and open) ----------------------------------
+    def reseed(self, seed: int) -> None:
+        """A fresh random generator; the drawing and its history stay."""
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+
+    def record_edit(self, name: str, ops: list[tuple]) -> StepRecord:
+        """File host operations made outside any rule (journaled by the caller) as one step,
+        so that undo and redo treat it like a rule application. It counts at no level."""
+        added = tuple(op[1] for op in ops if op[0] == "add")
+        removed = tuple(op[1] for op in ops if op[0] == "remove")
+        rec = StepRecord(name, True, EDIT_LEVEL, tuple(ops), added, removed, ())
+        self.history.append(rec)
+        self.redo_stack.clear()
+        self.applied_by_level[EDIT_LEVEL] = self.applied_by_level.get(EDIT_LEVEL, 0) + 1
         return rec
 
     def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
