@@ -324,6 +324,8 @@ class _Importer:
         if not rings:
             return  # SVG renders nothing for empty path data
         fill = self.colour(node, style, "fill") if fillable else None
+        if fill is not None and "fill" not in style and not any(_has_area(r) for r, _ in rings):
+            fill = None  # SVG's implicit black fill of a flat polyline paints nothing
         stroke = self.stroke_class(node, style)
         if fill is not None:
             label = style.get("data-label") or fill
@@ -349,6 +351,13 @@ class _Importer:
             raise self.fail(node, "gradient or pattern stroke without a data-class",
                             "give the line a data-class attribute, or a flat stroke colour")
         return DEFAULT_CLASS if colour in (None, "#000000") else colour
+
+
+def _has_area(ring: tuple) -> bool:
+    if len(ring) < 3:
+        return False
+    v = np.asarray(ring, dtype=float)[1:] - ring[0]
+    return bool(np.any(v[:-1, 0] * v[1:, 1] - v[:-1, 1] * v[1:, 0] != 0))
 
 
 def _open(points: list, closed: bool) -> list:

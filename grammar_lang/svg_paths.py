@@ -204,7 +204,7 @@ def apply(matrix: np.ndarray, points: list[Point]) -> list[Point]:
     out = arr @ matrix[:2, :2].T + matrix[:2, 2]
     if not np.all(np.isfinite(out)):
         raise SvgValueError("coordinates overflow after the transform")
-    return [(float(px), float(-py)) for px, py in out]
+    return [(float(px) + 0.0, 0.0 - float(py)) for px, py in out]
 
 
 # --- lengths ----------------------------------------------------------------------------------

@@ -169,6 +169,14 @@ def test_default_fill_is_black_and_hidden_elements_are_skipped():
     assert [p.label for p in src.paint] == ["#000000"]
 
 
+def test_flat_polyline_with_the_implicit_fill_is_only_a_line():
+    src = load('<polyline points="0,0 1,1 2,2 3,3" stroke="red"/>'
+               '<polyline points="0,0 1,1 2,0"/>')
+    assert isinstance(src.paint[0], Stroke) and src.paint[0].cls == "#ff0000"
+    assert isinstance(src.paint[1], Region)
+    assert all(y == 0.0 and str(y) == "0.0" for p in src.paint[:1] for _, y in p.points[:1])
+
+
 def test_title_names_the_example_else_the_file_stem():
     assert load("<title> My Shape </title><line x2='1'/>").name == "My Shape"
     assert load("<line x2='1'/>").name == "drawing"
