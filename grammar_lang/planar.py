@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from scipy.sparse import csr_matrix
 
 from .diagnostics import Diagnostic, Span, UserError, error
 from .planar_faces import compute_faces, winding
@@ -120,7 +121,7 @@ class _Builder:
         faces = compute_faces(pieces.vertices, pieces.ends)
         samples = _face_samples(pieces.vertices, pieces.ends, faces)
         regions = [s for s in self.items if s.kind == "region"]
-        cover = self.coverage(regions, samples, faces.count)
+        cover = self.coverage(regions, pieces, samples, faces.count)
         self.check_regions(regions, cover, d)
         labels = self.face_labels(regions, cover, pieces, faces)
         self.check()
@@ -137,45 +138,69 @@ class _Builder:
                         item.span, "draw it larger, or set a smaller merge distance")
         self.check()
 
-    def coverage(self, regions: list[_Source], samples: np.ndarray, count: int) -> np.ndarray:
-        """cover[f, r]: region r paints face f (faces are atomic: every ring is an edge)."""
-        cover = np.zeros((count, len(regions)), dtype=bool)
-        if not regions:
-            return cover
-        rings = [[np.asarray(ring, dtype=float) for ring in item.paint.rings if len(ring) > 2]
-                 for item in regions]
-        boxes = shapely.box(*np.array([np.r_[np.vstack(rs).min(axis=0), np.vstack(rs).max(axis=0)]
-                                       if rs else [np.nan] * 4 for rs in rings]).T)
-        # Which face samples fall in which region's bounding box, in one spatial query.
-        region_of, sample = shapely.STRtree(shapely.points(samples[1:])).query(
-            boxes, predicate="intersects")
-        order = np.argsort(region_of, kind="stable")
-        region_of, sample = region_of[order], sample[order] + 1
-        bounds = np.searchsorted(region_of, np.arange(len(regions) + 1))
-        for r, item in enumerate(regions):
-            hit = sample[bounds[r]:bounds[r + 1]]
-            if len(hit) == 0:
-                continue
-            a = np.vstack(rings[r])
-            b = np.vstack([np.roll(ring, -1, axis=0) for ring in rings[r]])
-            w = winding(samples[hit], a, b)
-            cover[hit, r] = (w % 2 != 0) if item.paint.evenodd else (w != 0)
-        return cover
+    def coverage(self, regions: list[_Source], pieces, samples: np.ndarray,
+                 count: int) -> csr_matrix:
+        """cover[f, r] is 1 when region r paints face f (sparse: a face lies in few regions).
 
-    def check_regions(self, regions: list[_Source], cover: np.ndarray, d: float) -> None:
-        for r in np.flatnonzero(~cover.any(axis=0)).tolist():
+        Faces are atomic (every ring is an edge), so the sample point of a face decides. The
+        rings are taken as noded and merged, as the pieces that came from them, so that the
+        test agrees with the faces exactly however far merging moved the drawing.
+        """
+        count_regions = len(regions)
+        region_index = {s.order: r for r, s in enumerate(regions)}
+        sid_region = np.array([region_index.get(item.order, -1) for item in self.items])
+        piece, sid, forward = (np.array(x, dtype=np.int64) for x in zip(*(
+            (e, s, f) for e, srcs in enumerate(pieces.sources) for s, f in srcs)))
+        own = sid_region[sid] >= 0
+        piece, region, forward = piece[own], sid_region[sid[own]], forward[own].astype(bool)
+        order = np.argsort(region, kind="stable")
+        piece, region, forward = piece[order], region[order], forward[order]
+        ends = pieces.ends[piece]
+        start = np.where(forward, ends[:, 0], ends[:, 1])
+        stop = np.where(forward, ends[:, 1], ends[:, 0])
+        a, b = pieces.vertices[start], pieces.vertices[stop]
+        bounds = np.searchsorted(region, np.arange(count_regions + 1))
+        face_hits: list[np.ndarray] = []
+        region_hits: list[np.ndarray] = []
+        if count_regions and len(region):
+            lo = np.full((count_regions, 2), np.nan)
+            hi = np.full((count_regions, 2), np.nan)
+            present = bounds[1:] > bounds[:-1]
+            lo[present] = np.minimum.reduceat(np.minimum(a, b), bounds[:-1][present])
+            hi[present] = np.maximum.reduceat(np.maximum(a, b), bounds[:-1][present])
+            boxes = shapely.box(lo[:, 0], lo[:, 1], hi[:, 0], hi[:, 1])
+            # Which face samples fall in which region's bounding box, in one spatial query.
+            box_of, sample = shapely.STRtree(shapely.points(samples[1:])).query(
+                boxes, predicate="intersects")
+            by_box = np.argsort(box_of, kind="stable")
+            box_of, sample = box_of[by_box], sample[by_box] + 1
+            hit_bounds = np.searchsorted(box_of, np.arange(count_regions + 1))
+            for r, item in enumerate(regions):
+                hit = sample[hit_bounds[r]:hit_bounds[r + 1]]
+                if len(hit) == 0:
+                    continue
+                seg = slice(bounds[r], bounds[r + 1])
+                w = winding(samples[hit], a[seg], b[seg])
+                inside = hit[(w % 2 != 0) if item.paint.evenodd else (w != 0)]
+                face_hits.append(inside)
+                region_hits.append(np.full(len(inside), r))
+        f = np.concatenate(face_hits) if face_hits else np.zeros(0, dtype=np.int64)
+        r = np.concatenate(region_hits) if region_hits else np.zeros(0, dtype=np.int64)
+        return csr_matrix((np.ones(len(f), dtype=np.int8), (f, r)),
+                          shape=(count, count_regions))
+
+    def check_regions(self, regions: list[_Source], cover: csr_matrix, d: float) -> None:
+        painted = np.bincount(cover.indices, minlength=len(regions))
+        for r in np.flatnonzero(painted == 0).tolist():
             item = regions[r].paint
             self.report(f"the region '{item.label}' collapses: nothing of it is left after "
                         f"merging points closer than {d:g}", item.span,
                         "draw it larger, or set a smaller merge distance")
 
-    def face_labels(self, regions, cover, pieces, faces) -> list[str]:
+    def face_labels(self, regions, cover: csr_matrix, pieces, faces) -> list[str]:
         exterior = self.source.exterior
-        painted: list[str | None] = [None] * faces.count
-        for f in range(1, faces.count):
-            hits = np.flatnonzero(cover[f])
-            if len(hits):
-                painted[f] = regions[hits[-1]].paint.label
+        top = _last_per_row(cover, np.arange(len(regions)))
+        painted: list[str | None] = [regions[r].paint.label if r >= 0 else None for r in top]
         painted[0] = exterior
         stated: dict[int, tuple[str, object]] = {}
         for e, srcs in enumerate(pieces.sources):
@@ -205,25 +230,36 @@ class _Builder:
         return [painted[f] if painted[f] is not None
                 else stated.get(f, (exterior,))[0] for f in range(faces.count)]
 
-    def assemble(self, pieces, faces, labels, regions, cover) -> ExampleGraph:
-        later = np.array([s.order for s in regions], dtype=np.int64)
+    def assemble(self, pieces, faces, labels, regions, cover: csr_matrix) -> ExampleGraph:
+        left_face, right_face = faces.face_of[0::2], faces.face_of[1::2]
+        # The last region painting both sides of a piece hides every earlier source of it.
+        both = cover[left_face].multiply(cover[right_face]).tocsr()
+        hidden_after = _last_per_row(both, np.array([s.order for s in regions], dtype=np.int64))
         kept: list[tuple[int, int, str, str, str, Span | None]] = []
         for e, srcs in enumerate(pieces.sources):
-            fl, fr = int(faces.face_of[2 * e]), int(faces.face_of[2 * e + 1])
-            both = cover[fl] & cover[fr]
-            hidden_after = later[both].max() if both.any() else -1
             visible = [self.items[sid] for sid, _ in srcs
                        if self.items[sid].kind == "explicit"
-                       or self.items[sid].order >= hidden_after]
+                       or self.items[sid].order >= hidden_after[e]]
             if not visible:
                 continue
+            # A line's class beats a bare outline; among lines the last drawn wins.
             classed = [s for s in visible if s.kind != "region"]
             decider = max(classed or visible, key=lambda s: s.order)
             cls = DEFAULT_CLASS if decider.kind == "region" else decider.paint.cls
             u, v = (int(x) for x in pieces.ends[e])
-            kept.append((u, v, labels[fl], labels[fr], cls, decider.paint.span))
+            kept.append((u, v, labels[left_face[e]], labels[right_face[e]], cls,
+                         decider.paint.span))
         kept = _dissolve(kept, pieces.is_input)
         return _canonical(pieces.vertices, kept)
+
+
+def _last_per_row(matrix: csr_matrix, values: np.ndarray) -> np.ndarray:
+    """For each row, the largest `values[column]` over its non-zero columns, else -1."""
+    out = np.full(matrix.shape[0], -1, dtype=np.int64)
+    coo = matrix.tocoo()
+    if coo.nnz:
+        np.maximum.at(out, coo.row, values[coo.col])
+    return out
 
 
 def _ring_area(ring) -> float:

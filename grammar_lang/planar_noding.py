@@ -180,18 +180,17 @@ def _split(vertices, ends, sources, splits):
 
 
 def _dedupe(ends, sources):
-    """One piece per unordered vertex pair, lower id first, merging (and flipping) sources."""
+    """One piece per unordered vertex pair, lower id first, merging (and flipping) sources.
+
+    A source that runs over one piece twice is listed twice: region winding numbers count it.
+    """
     merged: dict[tuple[int, int], list[tuple[int, bool]]] = {}
     for (u, w), srcs in zip(ends.tolist(), sources):
         if u == w:
             continue
         key = (u, w) if u < w else (w, u)
         flip = u > w
-        bucket = merged.setdefault(key, [])
-        for src, forward in srcs:
-            entry = (src, forward != flip)
-            if entry not in bucket:
-                bucket.append(entry)
+        merged.setdefault(key, []).extend((src, forward != flip) for src, forward in srcs)
     keys = sorted(merged)
     return (np.asarray(keys, dtype=np.int64).reshape(-1, 2),
             [sorted(merged[k]) for k in keys])
