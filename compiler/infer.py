@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import time
+from collections import Counter
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -78,6 +79,7 @@ class _Rule:
     pattern: Pattern
     exceptions: tuple[Pattern, ...]      # §5.4: right-side graphs that hold the left side
     rule: Rule
+    prims: Counter = field(default_factory=Counter)
 
 
 @dataclass
@@ -88,7 +90,7 @@ class _State:
 
 
 class Inference:
-    def __init__(self, example: Example, progress: Progress | None = None):
+    def __init__(self, example: Example, progress: Progress | None = None, group: bool = True):
         self.ex = example
         self.rings = [p.ring for p in example.primitives]
         self.ring_len = [len(r) for r in self.rings]
@@ -100,8 +102,13 @@ class Inference:
         self.turns = TurnAnalysis(self.rings)
         self.state = _State()
         self.progress = progress
-        self.blocks = grouping.blocks(self.rings)
+        self.blocks = grouping.blocks(self.rings, enabled=group)
         self.slots = block_slots(self.blocks, self.rings)
+        self.forced: set[tuple[int, int, int, int]] = set()
+        for p, i, q, j in grouping.forced_pairs(self.rings):
+            self.forced.update({(p, i, q, j), (q, j, p, i)})
+        self.block_size = {p: len(b.verts) for b in self.blocks for p in b.verts}
+        self.block_sizes = {p: {len(b.verts)} for b in self.blocks for p in b.verts}
         self.frontier: list[int] = []
         self.t0 = time.perf_counter()
         self.generation = 0
@@ -188,12 +195,21 @@ class Inference:
         self.frontier.append(node.id)
 
     def _holds_left_side(self, g: Graph, anchors, rules=None) -> bool:
-        host = Host(g.verts, g.edges)
-        cand: set[int] = set()
-        for a in anchors:
-            cand.update(self.state.by_prim.get(g.verts[a], ()))
-        for r in sorted(cand) if rules is None else rules:
+        """Whether g holds a rule's left side; with `anchors`, one that uses a new vertex (the
+        parent held none)."""
+        host: Host | None = None
+        have = Counter(g.verts)
+        if rules is None:
+            cand: set[int] = set()
+            for a in anchors:
+                cand.update(self.state.by_prim.get(g.verts[a], ()))
+            rules = sorted(cand)
+        for r in rules:
             rr = self.state.rules[r]
+            if any(have[p] < n for p, n in rr.prims.items()):
+                continue
+            if host is None:
+                host = Host(g.verts, g.edges)
             if contains(rr.pattern, host, anchors) and not any(
                     contains(e, host) for e in rr.exceptions):
                 return True
@@ -230,17 +246,30 @@ class Inference:
         name = f"{'s' if starter else 'r'}{len(self.state.rules)}"
         rule = Rule(name, lhs, rhs, priority=0, weight=1.0)
         idx = len(self.state.rules)
-        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule))
+        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, Counter(g.verts)))
         for p in sorted(set(g.verts)):
             self.state.by_prim.setdefault(p, []).append(idx)
         node.status = RULE
         if not exceptions and not starter:
-            if len(g.verts) == 1:
-                self.turns.forbid_primitive(g.verts[0])
-            elif len(g.verts) == 2 and len(g.edges) == 1:
-                v, i, w, j = g.edges[0]
-                self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
+            self._forbid(g)
         self._drop_holders(idx, node.id)
+
+    def _forbid(self, g: Graph) -> None:
+        """Tell the turning analysis what an irreducible graph can no longer hold: a left side
+        that is one whole block removes its primitives; two blocks joined by one edge remove
+        that kind of edge (blocks are glued whole, so the edge brings both blocks along)."""
+        inter = [e for e in g.edges
+                 if (g.verts[e[0]], e[1], g.verts[e[2]], e[3]) not in self.forced]
+        if not inter and len(g.verts) in self.block_sizes.get(g.verts[0], ()):
+            for p in sorted(set(g.verts)):
+                self.turns.forbid_primitive(p)
+        elif len(inter) == 1:
+            v, i, w, j = inter[0]
+            rest = tuple(e for e in g.edges if e != inter[0])
+            from .canon import components
+            parts = components(len(g.verts), rest)
+            if len(parts) == 2 and all(len(c) == self.block_size[g.verts[c[0]]] for c in parts):
+                self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
 
     def _drop_holders(self, idx: int, lhs_id: int) -> None:
         """Irreducible graphs that hold the new left side are reducible now (with §5.4's
@@ -249,7 +278,7 @@ class Inference:
             if other.id == lhs_id:
                 continue
             g = other.graph
-            if self._holds_left_side(g, range(len(g.verts)), [idx]):
+            if self._holds_left_side(g, None, [idx]):
                 other.status = REDUCIBLE
                 self.matcher.remove(other.id)
 

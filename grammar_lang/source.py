@@ -56,7 +56,7 @@ class Limits:
     generations: int = 12
     half_edges: int = 12
     graphs: int = 20000
-    seconds: float = 20.0
+    seconds: float = 2.0
 
 
 @dataclass(frozen=True)

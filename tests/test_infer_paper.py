@@ -1,0 +1,114 @@
+"""The paper's worked examples (§4-5, companion §6.6) as acceptance tests for inference."""
+
+import pytest
+
+from conftest import CORPUS
+from hand_examples import CORNERS_AND_T, RECTANGLE, make
+from compiler.infer import Inference, compile_example
+from compiler.verify import verify
+from grammar_lang import boundary as bd
+from grammar_lang.loader import load_example
+
+
+def test_rectangle_fig5_is_complete_with_at_most_five_rules():
+    res = compile_example(make(RECTANGLE))
+    assert res.report.complete
+    assert res.grammar.header.complete is True
+    assert res.report.rules + res.report.starters <= 5
+    assert res.report.starters == 1
+    # Every rule has equal boundary strings on both sides and a simpler right side.
+    rings = res.grammar.rings
+    for r in res.grammar.rules:
+        if r.is_starter:
+            assert r.lhs.tokens(rings) == (bd.UP,)
+            continue
+        assert bd.canonical(r.lhs.tokens(rings)) == bd.canonical(r.rhs.tokens(rings))
+
+
+def test_rectangle_verifies_up_to_ten_primitives():
+    res = compile_example(make(RECTANGLE))
+    v = verify(res.grammar, 10)
+    assert v.checked > 20 and v.ok and not v.enumeration_capped
+
+
+@pytest.mark.parametrize("name", ["square-hollow", "square-filled"])
+def test_corpus_squares_complete_and_verified(name):
+    res = compile_example(load_example(CORPUS / f"{name}.svg"))
+    assert res.report.complete
+    assert res.report.rules + res.report.starters <= 5
+    v = verify(res.grammar, 10)
+    assert v.ok and v.checked >= 1
+
+
+def test_spirals_are_pruned_in_the_rectangle():
+    # y∧ⁿ⁺¹ȳ∨ⁿ graphs (§5.6) are found to have no complete irreducible descendants.
+    inf = Inference(make(RECTANGLE))
+    inf.run()
+    pruned = [n.graph for n in inf.hier.nodes if n.status == "pruned"]
+    assert pruned
+    for g in pruned:
+        # Chains of corners that have turned past a full turn: 5 corners or more.
+        assert len(g.verts) >= 5 and len(g.edges) == len(g.verts) - 1
+
+
+def test_stubs_found_though_no_primitive_is_a_stub():
+    ex = make(CORNERS_AND_T)
+    assert all(len(p.ring) > 1 for p in ex.primitives)
+    inf = Inference(ex)
+    res = inf.run()
+    stubs = {n.graph.tokens(inf.rings) for n in inf.hier.nodes if n.graph.n_half == 1}
+    assert {((t, 1),) for t in (0, 1, 2, 3)} <= stubs
+    assert res.report.complete
+    assert verify(res.grammar, 7).ok
+
+
+def test_diagonal_box_uses_descendants_on_the_right_side():
+    # Fig. 4a / §5.4: a rule whose right side holds graphs that contain its left side.
+    from compiler.apply import side_graph
+    from compiler.occurrence import Host, Pattern, contains
+    res = compile_example(load_example(CORPUS / "diagonal-box.svg"))
+    found = False
+    for r in res.grammar.rules:
+        if r.is_starter or not r.rhs.vertices:
+            continue
+        lhs = Pattern.of(side_graph(r.lhs))
+        rhs = side_graph(r.rhs)
+        if contains(lhs, Host(rhs.verts, rhs.edges)):
+            found = True
+    assert found
+    assert verify(res.grammar, 8).ok
+
+
+@pytest.mark.xfail(strict=True, reason="the turning analysis does not yet prune the diagonal "
+                   "box's spirals; the compile is honest about it (limited)")
+def test_diagonal_box_complete():
+    res = compile_example(load_example(CORPUS / "diagonal-box.svg"))
+    assert res.report.complete
+
+
+TREES = ["line", "angle", "t", "z", "h", "u", "right-angles", "a", "branches", "curl",
+         "double-branch", "h-complex", "h-complex-2", "intersection", "plus", "triangle-curl"]
+
+
+@pytest.mark.parametrize("name", TREES)
+def test_trees_have_a_pair_of_stubs_for_every_label_and_are_complete(name):
+    ex = load_example(CORPUS / f"{name}.svg")
+    # Without grouping the hierarchy shows every stub (grouping folds some into blocks).
+    inf = Inference(ex, group=False)
+    res = inf.run()
+    stubs = {n.graph.tokens(inf.rings)[0][0] for n in inf.hier.nodes if n.graph.n_half == 1}
+    stubs |= {p.ring[0] for p in ex.primitives if len(p.ring) == 1}
+    assert {t for p in ex.primitives for t in p.ring} <= stubs
+    assert res.report.complete
+    assert compile_example(ex).report.complete
+
+
+def test_no_loops_option_forbids_loop_gluing_and_splicing():
+    from dataclasses import replace
+    ex = load_example(CORPUS / "square-hollow.svg")
+    ex = replace(ex, options=replace(ex.options, no_loops=True))
+    inf = Inference(ex)
+    res = inf.run()
+    assert all(n.graph.n_half > 0 for n in inf.hier.nodes)      # nothing ever closes
+    for r in res.grammar.rules:
+        assert len(r.rhs.components()) + len(r.rhs.wires) <= 1
