@@ -25,6 +25,9 @@ def build_parser() -> ArgumentParser:
     p.add_argument("file", nargs="?", help="a grammar (.ggr), or an example (.gg, .svg)")
     from .run_cmd import add_arguments
     add_arguments(p)
+    p.add_argument("--repl", action="store_true",
+                   help="explore the grammar interactively (commands from stdin when it is "
+                        "not a terminal); generation flags set up its engine")
     common_flags(p)
     return p
 
@@ -35,6 +38,9 @@ def _main(argv: Sequence[str]) -> int:
         from .verifier import check_command
         return check_command(args.example, args.drawing, args.tolerance, 0 if args.all else 50)
     args = build_parser().parse_args(argv)
+    if args.repl:
+        from .repl import repl_command
+        return repl_command(args)
     from .run_cmd import run_command
     return run_command(args)
 
