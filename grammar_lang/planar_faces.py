@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
@@ -80,30 +81,46 @@ def compute_faces(vertices: np.ndarray, ends: np.ndarray) -> Faces:
     cycle_comp = np.zeros(cycles, dtype=np.int64)
     cycle_comp[cycle] = component[origin]
     # Each component's outer boundary is its most negative cycle (minus the sum of the rest).
-    comps = np.unique(cycle_comp)
-    outer = np.array([np.flatnonzero(cycle_comp == c)[np.argmin(area[cycle_comp == c])]
-                      for c in comps])
+    by_comp = np.lexsort((area, cycle_comp))
+    comps, first_of = np.unique(cycle_comp[by_comp], return_index=True)
+    outer = by_comp[first_of]
     is_outer = np.zeros(cycles, dtype=bool)
     is_outer[outer] = True
     inner = np.flatnonzero(~is_outer)
     face_of_cycle = np.zeros(cycles, dtype=np.int64)
     face_of_cycle[inner] = np.arange(1, len(inner) + 1)
     face_area = np.concatenate([[0.0], area[inner]])
-
-    if len(inner):
-        lo = np.full((cycles, 2), np.inf)
-        hi = np.full((cycles, 2), -np.inf)
-        np.minimum.at(lo, cycle, p)
-        np.maximum.at(hi, cycle, p)
-        for c, oc in zip(comps.tolist(), outer.tolist()):
-            probe = p[np.flatnonzero(cycle == oc)[0]]
-            cand = inner[(cycle_comp[inner] != c) & np.all(lo[inner] < probe, axis=1)
-                         & np.all(hi[inner] > probe, axis=1)]
-            best, best_area = 0, np.inf
-            for k in cand[np.argsort(area[cand], kind="stable")].tolist():
-                hs = np.flatnonzero(cycle == k)
-                if winding(probe, p[hs], q[hs])[0] != 0:
-                    best, best_area = face_of_cycle[k], area[k]
-                    break
-            face_of_cycle[oc] = best
+    if len(inner) and len(comps) > 1:
+        face_of_cycle[outer] = _enclosing_faces(p, q, cycle, area, cycle_comp, comps, outer,
+                                                inner, face_of_cycle)
     return Faces(face_of_cycle[cycle], len(inner) + 1, face_area)
+
+
+def _enclosing_faces(p, q, cycle, area, cycle_comp, comps, outer, inner, face_of_cycle):
+    """The face each component sits in: the smallest other component's face around it."""
+    by_cycle = np.argsort(cycle, kind="stable")
+    starts = np.searchsorted(cycle[by_cycle], np.arange(len(area) + 1))
+    probes = p[by_cycle[starts[outer]]]               # a vertex of each component
+    lo = np.full((len(area), 2), np.inf)
+    hi = np.full((len(area), 2), -np.inf)
+    np.minimum.at(lo, cycle, p)
+    np.maximum.at(hi, cycle, p)
+    boxes = shapely.box(lo[inner, 0], lo[inner, 1], hi[inner, 0], hi[inner, 1])
+    probe, k = shapely.STRtree(boxes).query(shapely.points(probes))
+    other = cycle_comp[inner[k]] != comps[probe]
+    probe, k = probe[other], k[other]
+    inside = np.zeros(len(probe), dtype=bool)
+    order = np.argsort(k, kind="stable")
+    probe, k = probe[order], k[order]
+    group = np.searchsorted(k, np.arange(len(inner) + 1))
+    for j in np.unique(k).tolist():
+        rows = slice(group[j], group[j + 1])
+        hs = by_cycle[starts[inner[j]]:starts[inner[j] + 1]]
+        inside[rows] = winding(probes[probe[rows]], p[hs], q[hs]) != 0
+    probe, k = probe[inside], k[inside]
+    enclosing = np.zeros(len(outer), dtype=np.int64)
+    if len(probe):
+        smallest = np.lexsort((area[inner[k]], probe))
+        found, first = np.unique(probe[smallest], return_index=True)
+        enclosing[found] = face_of_cycle[inner[k[smallest[first]]]]
+    return enclosing

@@ -155,8 +155,7 @@ class _Importer:
     def __init__(self, file: str, text: str):
         self.file = file
         self.text = text
-        self.line_starts = np.concatenate(
-            ([0], np.flatnonzero(np.frombuffer(text.encode("utf-32-le"), dtype="<u4") == 10) + 1))
+        self.line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
         self.paint: list = []
         self.face_labels: dict[str, Span | None] = {}
         self.classes: dict[str, EdgeClass] = {}
@@ -166,7 +165,7 @@ class _Importer:
 
     def _offset(self, node: _Node) -> int:
         if 1 <= node.line <= len(self.line_starts):
-            return int(self.line_starts[node.line - 1]) + node.column - 1
+            return self.line_starts[node.line - 1] + node.column - 1
         return -1
 
     def span(self, node: _Node) -> Span:
