@@ -1,0 +1,48 @@
+"""Every corpus example compiles within the default limits, with an honest report."""
+
+import pytest
+
+from conftest import CORPUS, corpus_names
+from compiler.infer import compile_example
+from grammar_lang import boundary as bd
+from grammar_lang.loader import load_example
+
+# Examples the original tool solved with a few rule classes (corpus README table).
+SOLVED_BY_ORIGINAL = ["l", "house-filled", "square-filled", "square-hollow", "triangle", "h",
+                      "t", "u", "z", "angle", "line", "right-angles"]
+
+
+@pytest.mark.parametrize("name", corpus_names())
+def test_compiles_within_default_limits(name):
+    ex = load_example(CORPUS / f"{name}.svg")
+    res = compile_example(ex)
+    rep = res.report
+    limits = ex.options.limits
+    assert rep.primitives == len(ex.primitives)
+    assert rep.rules + rep.starters == len(res.grammar.rules)
+    assert rep.generations <= limits.generations
+    assert rep.seconds < limits.seconds * 2 + 1     # the time limit is honoured (loosely)
+    assert res.grammar.header.complete is rep.complete
+    if rep.complete:
+        assert not rep.limits_hit and rep.remaining == 0
+    else:
+        assert rep.limits_hit or rep.remaining
+        assert len(rep.remaining_boundaries) == min(5, rep.remaining)
+    rings = res.grammar.rings
+    for r in res.grammar.rules:
+        if r.is_starter:
+            assert r.lhs.tokens(rings) == (bd.UP,) and not r.lhs.open_slots()
+        else:
+            assert bd.canonical(r.lhs.tokens(rings)) == bd.canonical(r.rhs.tokens(rings))
+
+
+@pytest.mark.parametrize("name", SOLVED_BY_ORIGINAL)
+def test_examples_the_original_tool_solved_are_complete(name):
+    res = compile_example(load_example(CORPUS / f"{name}.svg"))
+    assert res.report.complete, res.report.verdict
+
+
+def test_output_is_deterministic():
+    ex = load_example(CORPUS / "star-hollow.svg")
+    a, b = compile_example(ex), compile_example(ex)
+    assert a.grammar == b.grammar

@@ -1,0 +1,54 @@
+"""`ggc verify`: finds every complete graph, passes sound grammars and catches broken ones."""
+
+from dataclasses import replace
+
+from conftest import CORPUS
+from hand_examples import RECTANGLE, make
+from compiler.cli import main
+from compiler.infer import compile_example
+from compiler.verify import complete_graphs, verify
+from grammar_lang.loader import load_example
+
+
+def test_enumerates_rectangles_and_their_composites():
+    rings = [p.ring for p in make(RECTANGLE).primitives]
+    graphs, capped = complete_graphs(rings, 4)
+    assert not capped and len(graphs) == 1 and len(graphs[0].verts) == 4
+    graphs, _ = complete_graphs(rings, 8)
+    # With 8 corners: the rectangle, and the L and other 6- and 8-corner outlines.
+    assert len(graphs) > 3 and all(g.is_complete for g in graphs)
+
+
+def test_a_grammar_missing_a_rule_fails():
+    res = compile_example(make(RECTANGLE))
+    rules = res.grammar.rules
+    # Without the starter nothing reduces to ∅; without the x rules, no wide rectangle does.
+    for keep in (lambda r: not r.is_starter,
+                 lambda r: r.is_starter or r.rhs.wires != (0,)):
+        broken = replace(res.grammar, rules=tuple(r for r in rules if keep(r)))
+        v = verify(broken, 8)
+        assert not v.ok and v.failed
+    assert verify(res.grammar, 8).ok
+
+
+def test_cli_compile_then_verify(tmp_path, capsys):
+    out = tmp_path / "sq.ggr"
+    report = tmp_path / "sq.json"
+    src = str(CORPUS / "square-hollow.svg")
+    assert main(["compile", src, "-o", str(out), "--report", str(report)]) == 0
+    assert out.exists() and '"complete": true' in report.read_text()
+    assert "complete" in capsys.readouterr().out
+    assert main(["verify", str(out), "--max-primitives", "8"]) == 0
+    text = capsys.readouterr().out
+    assert "0 failed" in text
+    # Recompiling over an unedited file is fine; over an edited one it needs --force.
+    assert main(["compile", src, "-o", str(out)]) == 0
+    out.write_text(out.read_text().replace("weight=1", "weight=2", 1))
+    assert main(["compile", src, "-o", str(out)]) == 2
+    assert main(["compile", src, "-o", str(out), "--force"]) == 0
+
+
+def test_cli_errors_are_diagnostics(tmp_path, capsys):
+    assert main(["verify", str(tmp_path / "missing.ggr")]) == 2
+    assert main(["compile", str(tmp_path / "x.txt")]) == 2
+    assert "Traceback" not in capsys.readouterr().err
