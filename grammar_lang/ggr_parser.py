@@ -23,7 +23,7 @@ from . import boundary as bd
 from .diagnostics import Diagnostic, Span, UserError, did_you_mean
 from .example import EdgeLabel, Primitive
 from .fileio import read_text
-from .graph import EMPTY, Side
+from .graph import EMPTY, Side, face_walk
 from .rules import Grammar, Header, Rule
 from .source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
 
@@ -122,6 +122,10 @@ def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> UserError:
 
 
 # --- resolution and validation ----------------------------------------------------------------
+
+def _turn_text(n: int) -> str:
+    return " ".join(["+"] * n if n > 0 else ["-"] * -n)
+
 
 class _Stop(Exception):
     """Abandon the current statement or rule after an error; the error is already recorded."""
@@ -709,8 +713,68 @@ class _Builder:
                             self._first_token(bnode),
                             "a closed walk around a graph has one more '+' than '-' (P − N = 1)")
         default = tuple(f"v{k}" for k in range(len(names)))
-        return Side(tuple(vertices), tuple(out_edges), tuple(items),
+        side = Side(tuple(vertices), tuple(out_edges), tuple(items),
                     () if tuple(names) == default else tuple(names), tuple(wires))
+        self._check_walk(side, bnode, ctx, show)
+        return side
+
+    def _check_walk(self, side: Side, bnode: Tree, ctx: "_Context", show) -> None:
+        """The boundary must be the walk around the graph that its edges and rings imply.
+
+        Each connected component is checked on its own: walking the written boundary, the
+        turns between two consecutive open slots of the component (other components spliced in
+        between add up to none, paper §4.2) must equal those of the component's own face walk.
+        """
+        comp: dict[int, int] = {}
+        for c, members in enumerate(side.components()):
+            for v in members:
+                comp[v] = c
+        n_comp = len(side.components())
+
+        def component(slot) -> int:
+            return comp[slot[0]] if slot[0] >= 0 else n_comp + (-1 - slot[0])
+
+        items = side.boundary
+        where = {it: k for k, it in enumerate(items) if isinstance(it, tuple)}
+        done: set[int] = set()
+        for first in (it for it in items if isinstance(it, tuple)):
+            c = component(first)
+            if c in done:
+                continue
+            done.add(c)
+            # The written walk of this component: its slots with all turns between them.
+            written: list[list] = []
+            k0 = where[first]
+            for m in range(len(items)):
+                it = items[(k0 + m) % len(items)]
+                if isinstance(it, tuple):
+                    if component(it) == c:
+                        written.append([it, 0])
+                else:
+                    written[-1][1] += 1 if it == bd.UP else -1
+            walk = face_walk(side, first, ctx.rings)
+            if [tuple(w) for w in written] == walk:
+                continue
+            expect = " ".join(show(*slot) + (" " + _turn_text(n) if n else "") for slot, n in walk)
+            on_face = {slot for slot, _ in walk}
+            stray = [w[0] for w in written if w[0] not in on_face]
+            if stray:
+                message = (f"{show(*stray[0])} is not on the same face as {show(*first)}: "
+                           f"the edges close a face around one of them")
+            else:
+                k = next(k for k, (w, g) in enumerate(zip(written, walk)) if tuple(w) != g)
+                got, want = written[k], walk[k]
+                if got[0] != want[0]:
+                    message = (f"the boundary does not follow the graph: after "
+                               f"{show(*written[k - 1][0])} the walk around the graph reaches "
+                               f"{show(*want[0])}, not {show(*got[0])}")
+                else:
+                    message = (f"the boundary does not follow the graph: after {show(*got[0])} "
+                               f"the walk turns {want[1]:+d} times, not {got[1]:+d}")
+            bad = stray[0] if stray else written[k][0] if k < len(written) else first
+            raise self.fail(message, self._slot(bnode.children[where[bad]]).span,
+                            f"walking counter-clockwise around the graph from {show(*first)}, "
+                            f"its open half-edges are: {expect}")
 
     def _slot(self, node: Tree) -> _Slot:
         vtok, ref = node.children

@@ -1,10 +1,11 @@
 """Hypothesis strategies for grammars whose headers and rules are consistent (.ggr tests).
 
-Rules are built so that they pass every check of the parser: glued slots carry opposite
-half-edges on different vertices, every open slot is on the boundary once, P − N = 1, and the
-two sides have equal boundary strings (the left side is the right side with its vertices
-renumbered and renamed and its edges reordered). Starters glue a random set of vertices
-completely, or a pair of opposite stubs.
+Rules are built so that they pass every check of the parser: sides are grown by branch and
+loop gluing as the compiler grows graphs, so glued slots carry opposite half-edges on
+different vertices and the boundary is the walk the rotation system implies; components and
+wires are spliced as A∧ⁿB∨ⁿ⁺¹. The two sides of a rule have equal boundary strings (the left
+side is the right side with its vertices renumbered and renamed and its edges reordered).
+Starters glue a random set of vertices completely, or a pair of opposite stubs.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from hypothesis import strategies as st
 
 from grammar_lang import boundary as bd
 from grammar_lang.example import EdgeLabel, Primitive
-from grammar_lang.graph import Side
+from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Grammar, Header, Rule
 from grammar_lang.source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
 
@@ -119,23 +120,82 @@ def _names(draw, n):
     return () if chosen == tuple(f"v{k}" for k in range(n)) else chosen
 
 
+def _component(draw, rings, labels, vertices: list[int], edges: list) -> list[tuple]:
+    """Grow one component into `vertices`/`edges`: a tree by branch gluing, then a few loop
+    gluings of consecutive slots, as the compiler builds graphs. Returns its face walk."""
+    if draw(st.integers(0, 4)) == 0:   # a wire; the caller numbers it
+        return [("wire", bd.half(draw(st.integers(0, len(labels) - 1)), False))]
+    first = len(vertices)
+    vertices.append(draw(st.integers(0, len(rings) - 1)))
+    glued: set = set()
+    for _ in range(draw(st.integers(0, 3))):
+        open_slots = [(v, i) for v in range(first, len(vertices))
+                      for i in range(len(rings[vertices[v]])) if (v, i) not in glued]
+        if not open_slots:
+            break
+        s = draw(st.sampled_from(open_slots))
+        want = bd.opposite(rings[vertices[s[0]]][s[1]])
+        fits = [(p, r.index(want)) for p, r in enumerate(rings) if want in r]
+        if not fits:
+            continue
+        p, j = draw(st.sampled_from(fits))
+        t = (len(vertices), j)
+        vertices.append(p)
+        edges.append(s + t)
+        glued |= {s, t}
+    while True:
+        side = Side(tuple(vertices), tuple(edges), ())
+        open_slots = [(v, i) for v in range(first, len(vertices))
+                      for i in range(len(rings[vertices[v]])) if (v, i) not in glued]
+        if not open_slots:      # complete (two opposite stubs): its walk is just ∧
+            return []
+        walk = face_walk(side, open_slots[0], rings)
+        loops = [k for k, ((s1, n1), (s2, _)) in enumerate(zip(walk, walk[1:] + walk[:1]))
+                 if len(walk) > 2 and s1[0] != s2[0]
+                 and rings[vertices[s2[0]]][s2[1]] == bd.opposite(rings[vertices[s1[0]]][s1[1]])
+                 and n1 == (-1 if bd.is_bar(rings[vertices[s1[0]]][s1[1]]) else 0)]
+        if not loops or not draw(st.booleans()):
+            return walk
+        k = draw(st.sampled_from(loops))
+        s1, s2 = walk[k][0], walk[(k + 1) % len(walk)][0]
+        edges.append(s1 + s2 if s1 < s2 else s2 + s1)
+        glued |= {s1, s2}
+
+
+def _as_items(walk, start: int) -> list:
+    out: list = []
+    for slot, n in walk[start:] + walk[:start]:
+        out.append(slot)
+        out.extend(bd.turns(n))
+    return out
+
+
 @st.composite
 def sides(draw, header: Header) -> Side:
+    """A side of one or more components spliced as A∧ⁿB∨ⁿ⁺¹ (paper §4.2), with a boundary
+    that follows its rotation system."""
     rings = [p.ring for p in header.primitives]
-    wires = draw(st.lists(st.integers(0, len(header.labels) - 1).map(lambda l: bd.half(l, False)),
-                          max_size=2))
-    vertices = draw(st.lists(st.integers(0, len(rings) - 1), min_size=0 if wires else 1,
-                             max_size=5))
-    edges, open_slots = _glue(draw, rings, vertices, eager=False)
-    ends = [(-1 - e, i) for e in range(len(wires)) for i in (0, 1)]
-    open_slots = draw(st.permutations(open_slots + ends))
+    vertices: list[int] = []
+    edges: list = []
+    wires: list[int] = []
     items: list = []
-    for slot in open_slots:
-        items.extend(bd.turns(draw(st.integers(-2, 2))))
-        items.append(slot)
-    items.extend(bd.turns(1 - bd.winding(t for t in items if isinstance(t, int))))
-    return Side(tuple(vertices), tuple(edges), tuple(items), _names(draw, len(vertices)),
-                tuple(wires))
+    for c in range(draw(st.integers(1, 3))):
+        walk = _component(draw, rings, header.labels, vertices, edges)
+        if walk and walk[0][0] == "wire":
+            wires.append(walk[0][1])
+            e = -len(wires)
+            walk = [((e, 1), 0), ((e, 0), 1)]
+        block = _as_items(walk, draw(st.integers(0, len(walk) - 1))) if walk else [bd.UP]
+        if c:
+            n = draw(st.integers(-1, 2))
+            block = list(bd.turns(n)) + block + list(bd.turns(-n - 1))
+        at = draw(st.integers(0, len(items)))
+        items[at:at] = block
+    shift = draw(st.integers(0, len(items) - 1))
+    items = items[shift:] + items[:shift]
+    edges = [(v, i, w, j) if (v, i) < (w, j) else (w, j, v, i) for v, i, w, j in edges]
+    return Side(tuple(vertices), tuple(draw(st.permutations(edges))), tuple(items),
+                _names(draw, len(vertices)), tuple(wires))
 
 
 @st.composite

@@ -130,3 +130,23 @@ def test_write_refuses_unreadable_existing_path(tmp_path):
     target.mkdir()
     with pytest.raises(UserError):
         write_ggr(target, grammar)
+
+
+# --- grammars the compiler infers from the corpus ---------------------------------------------
+
+# Examples that compile in well under a second, with a spread of rule kinds: wires, spliced
+# sides, starters, rules with several components.
+COMPILED = ["square-hollow", "curl", "star-hollow", "double-branch", "diagonal-row", "plus",
+            "intersection", "triangle-square", "star-filled", "u"]
+
+
+@pytest.mark.skipif(not CORPUS.is_dir(), reason="corpus not available")
+@pytest.mark.parametrize("stem", COMPILED)
+def test_compiled_corpus_grammars_validate_and_round_trip(stem, tmp_path):
+    from compiler.infer import compile_example
+    from grammar_lang.loader import load_example
+    grammar = compile_example(load_example(CORPUS / f"{stem}.json")).grammar
+    assert grammar.rules
+    path = tmp_path / f"{stem}.ggr"
+    write_ggr(path, grammar)
+    assert load_ggr(path) == grammar
