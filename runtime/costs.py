@@ -5,7 +5,8 @@ with probability min(1, exp(−Δ/T)). Costs see `Stats`, which the engine predi
 proposed change before any geometry is solved, so a proposal the cost refuses costs nothing.
 
 Built in (`--cost NAME[:ARG[:ARG]]`):
-- `size[:N]`: stay near N vertices (default: the number of steps asked for);
+- `size[:N]`: grow to about N vertices (default: the number of steps asked for): the cost is
+  N − n below N and (n − N)/4 above;
 - `density:D`: about D vertices per unit² of the drawing's bounding box;
 - `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
 - `none`: accept every placeable proposal.
@@ -42,13 +43,19 @@ class NoCost:
         return 0.0
 
 
+OVERSHOOT = 0.25
+
+
 @dataclass(frozen=True)
 class SizeCost:
     target: int
     name: str = "size"
 
     def value(self, s: Stats) -> float:
-        return float(abs(s.vertices - self.target))
+        # Full pull up to the target, a gentle one beyond: growth is cheap, and once there
+        # the walk keeps exploring instead of refusing most proposals.
+        d = s.vertices - self.target
+        return float(-d) if d < 0 else OVERSHOOT * d
 
 
 @dataclass(frozen=True)

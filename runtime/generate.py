@@ -250,7 +250,8 @@ class Engine:
         host = self.host
         todo = set(placed)
         if pts:
-            pad = host.t.unit
+            # Any vertex whose face can have changed lies in the changed box (see face_ok).
+            pad = 0.05 * host.t.unit
             xs, ys = [p[0] for p in pts], [p[1] for p in pts]
             todo.update(host.grid.points_near(min(xs) - pad, min(ys) - pad,
                                               max(xs) + pad, max(ys) + pad))

@@ -26,7 +26,7 @@ import numpy as np
 
 from .host import Host, Point
 from .rewrite import Change
-from .spatial import seg_distance
+from .spatial import seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
@@ -250,13 +250,13 @@ class Solver:
                 y = host.link[x][i][0]
                 if x in (v, w) or y in (v, w):
                     continue
-                if seg_distance(a, c, host.pos[x], host.pos[y]) < clr:
+                if seg_near(a, c, host.pos[x], host.pos[y], clr):
                     self._fail("crossing")
                     return False
             for v2, w2, a2, c2 in segs[k + 1:]:
                 if v2 in (v, w) or w2 in (v, w):
                     continue
-                if seg_distance(a, c, a2, c2) < clr:
+                if seg_near(a, c, a2, c2, clr):
                     self._fail("crossing")
                     return False
         return True

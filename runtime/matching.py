@@ -18,10 +18,10 @@ import numpy as np
 from grammar_lang.graph import Side, Slot
 
 from .host import Host
-from .spatial import seg_distance
+from .spatial import seg_near
 
 # How far (in units) the components of a spliced side may lie from each other.
-SPLICE_RADIUS = 4.0
+SPLICE_RADIUS = 2.5
 
 
 @dataclass(frozen=True)
@@ -71,9 +71,10 @@ class Pattern:
         opens = tuple(side.open_slots())
         comp_of = {v: k for k, c in enumerate(comps) for v in c.vertices}
         splices = []
+        for v in range(-len(side.wires), 0):
+            comp_of[v] = ("wire", v)          # each wire is a component of its own
         for a, b in zip(opens, opens[1:] + opens[:1]):
-            # Splices to a wire are left to the geometric tests of the placement.
-            if a[0] >= 0 and b[0] >= 0 and comp_of[a[0]] != comp_of[b[0]]:
+            if comp_of[a[0]] != comp_of[b[0]]:
                 splices.append((a, b))
         wire_slots = tuple(
             tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
@@ -143,13 +144,12 @@ def _visible(host: Host, a: int, b: int) -> bool:
     """No host edge crosses the straight segment between vertices a and b."""
     pa, pb = host.pos[a], host.pos[b]
     eps = 1e-9 * host.t.unit
-    for key in sorted(host.grid.segments_near(min(pa[0], pb[0]), min(pa[1], pb[1]),
-                                              max(pa[0], pb[0]), max(pa[1], pb[1]))):
-        v, i = key
-        w = host.link[v][i][0]
+    link, pos = host.link, host.pos
+    for v, i in host.grid.segments_along(pa, pb):
+        w = link[v][i][0]
         if a in (v, w) or b in (v, w):
             continue
-        if seg_distance(pa, pb, host.pos[v], host.pos[w]) <= eps:
+        if seg_near(pa, pb, pos[v], pos[w], eps):
             return False
     return True
 
@@ -172,8 +172,7 @@ def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
 def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
             rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
     if ci == len(pattern.components):
-        if _glue_ok(host, pattern, vmap, spo) and all(
-                _visible(host, vmap[a[0]], vmap[b[0]]) for a, b in pattern.splices):
+        if _glue_ok(host, pattern, vmap, spo):
             yield from _search_wires(host, pattern, 0, vmap, (), rng)
         return
     comp = pattern.components[ci]
@@ -197,14 +196,19 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
 def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tuple,
                   rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
     if wi == len(pattern.wire_slots):
-        yield vmap, wires
+        def at(s: Slot) -> int:
+            return vmap[s[0]] if s[0] >= 0 else wires[-1 - s[0]][s[1]][0]
+        if all(_visible(host, at(a), at(b)) for a, b in pattern.splices):
+            yield vmap, wires
         return
     image = set(vmap.values())
     taken = {s for pair in wires for s in pair}
     lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[wi]]
-    if vmap and rng is not None:
-        # Beside matched vertices, look for the wire nearby only.
-        near = set(_comp_candidates_any(host, vmap))
+    placed = dict(vmap)
+    placed.update({("w", k): s[0] for k, pair in enumerate(wires) for s in pair})
+    if placed:
+        # Beside parts already matched, look for the wire nearby only.
+        near = set(_comp_candidates_any(host, placed))
         lists = [(i, [h for h in lst if h in near]) for i, lst in lists]
     total = sum(len(l) for _, l in lists)
     if total == 0:

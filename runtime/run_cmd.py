@@ -76,7 +76,8 @@ def _compile_in_memory(p: Path) -> Grammar:
                     "compiler.infer.compile_example", Span(str(p)),
                     f"compile it first: 'ggc {p.name}', then run 'ggrun' on the .ggr") from None
     from grammar_lang.loader import load_example
-    return compile_example(load_example(p))
+    result = compile_example(load_example(p))
+    return getattr(result, "grammar", result)
 
 
 def _parse_limits(items: list[str]) -> tuple[tuple[int, int], ...]:

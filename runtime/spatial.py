@@ -65,6 +65,25 @@ class Grid:
                 out |= s
         return out
 
+    def segments_along(self, a: Point, b: Point) -> set:
+        """Ids of segments filed in the cells the segment ab passes through (sampled finely
+        enough not to skip a cell), rather than in its whole bounding box."""
+        c = self.cell
+        n = max(1, int(math.ceil(4 * max(abs(b[0] - a[0]), abs(b[1] - a[1])) / c)))
+        keys = set()
+        for k in range(n + 1):
+            t = k / n
+            x, y = a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])
+            i, j = math.floor(x / c), math.floor(y / c)
+            # A diagonal step can pass through a corner neighbour: take the 2×2 block.
+            keys.update(((i, j), (i - 1, j), (i, j - 1), (i + 1, j), (i, j + 1)))
+        out: set = set()
+        for k in keys:
+            s = self._seg_cells.get(k)
+            if s:
+                out |= s
+        return out
+
     # --- points -----------------------------------------------------------------------------
     def add_point(self, pid: Hashable, p: Point) -> None:
         self._pts[pid] = p
@@ -139,6 +158,14 @@ class Grid:
                 break
             col -= 1
         return None if best is None else (best[1], best[0])
+
+
+def seg_near(a: Point, b: Point, c: Point, d: Point, eps: float) -> bool:
+    """Do segments ab and cd come closer than eps? Boxes first, since most candidates are far."""
+    if (min(a[0], b[0]) - eps > max(c[0], d[0]) or min(c[0], d[0]) - eps > max(a[0], b[0])
+            or min(a[1], b[1]) - eps > max(c[1], d[1]) or min(c[1], d[1]) - eps > max(a[1], b[1])):
+        return False
+    return seg_distance(a, b, c, d) < eps
 
 
 def seg_distance(a: Point, b: Point, c: Point, d: Point) -> float:
