@@ -22,6 +22,7 @@ from .source import DEFAULT_CLASS, ExampleGraph, ExampleSource, ExplicitEdge, Re
 
 MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the bounding-box diagonal
 MAX_DIAGNOSTICS = 20
+MAX_COORDINATE = 1e12     # beyond this, squared lengths lose every digit the geometry needs
 
 
 @dataclass(frozen=True)
@@ -96,9 +97,9 @@ class _Builder:
             raise error("the drawing has no edges", Span(self.source.path),
                         "draw at least one line or filled shape", source=None)
         pts = np.asarray(points, dtype=float)
-        if not np.all(np.isfinite(pts)):
-            raise error("the drawing has coordinates that are not finite numbers",
-                        Span(self.source.path))
+        if not np.all(np.abs(pts) <= MAX_COORDINATE):
+            raise error(f"the drawing has coordinates beyond ±{MAX_COORDINATE:g}",
+                        Span(self.source.path), "scale the drawing down")
         return pts, np.asarray(segments, dtype=np.int64)
 
     # --- building ---------------------------------------------------------------------------

@@ -236,7 +236,8 @@ class _Importer:
             return
         if "transform" in node.attrs:
             try:
-                matrix = matrix @ parse_transform(node.attrs["transform"])
+                with np.errstate(over="ignore", invalid="ignore"):  # apply() reports overflow
+                    matrix = matrix @ parse_transform(node.attrs["transform"])
             except SvgValueError as exc:
                 raise self.fail(node, f"bad transform: {exc.message}", exc.hint,
                                 "transform", exc.offset) from None
@@ -244,7 +245,9 @@ class _Importer:
         if tag in _CONTAINERS:
             if tag == "svg" and node is not self.root:
                 offset = [self.length(node, "x"), self.length(node, "y")]
-                matrix = matrix @ np.array([[1.0, 0, offset[0]], [0, 1.0, offset[1]], [0, 0, 1]])
+                with np.errstate(over="ignore", invalid="ignore"):
+                    matrix = matrix @ np.array([[1.0, 0, offset[0]], [0, 1.0, offset[1]],
+                                                [0, 0, 1]])
             for child in node.children:
                 self.walk(child, matrix, style)
             return

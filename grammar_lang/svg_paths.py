@@ -167,7 +167,8 @@ def parse_transform(text: str) -> np.ndarray:
             counts = " or ".join(str(n) for n in _ARITY[name])
             raise SvgValueError(f"{name}() takes {counts} numbers, got {len(values)}",
                                 match.start(1))
-        result = result @ _matrix(name, values)
+        with np.errstate(over="ignore", invalid="ignore"):  # apply() reports overflow
+            result = result @ _matrix(name, values)
         i = match.end()
     return result
 
@@ -201,7 +202,8 @@ def apply(matrix: np.ndarray, points: list[Point]) -> list[Point]:
     if not points:
         return []
     arr = np.asarray(points, dtype=float)
-    out = arr @ matrix[:2, :2].T + matrix[:2, 2]
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = arr @ matrix[:2, :2].T + matrix[:2, 2]
     if not np.all(np.isfinite(out)):
         raise SvgValueError("coordinates overflow after the transform")
     return [(float(px) + 0.0, 0.0 - float(py)) for px, py in out]

@@ -188,6 +188,13 @@ def test_degenerate_shapes_are_reported_where_they_come_from(paint, message):
     assert diagnostic.span == Span("t.gg", 7, 3)
 
 
+def test_absurd_coordinates_are_reported():
+    with pytest.raises(UserError, match="beyond"):
+        build(Stroke(((0, 0), (1e300, 0))))
+    with pytest.raises(UserError, match="beyond"):
+        build(Stroke(((0, 0), (float("nan"), 0))))
+
+
 def test_empty_drawing_is_reported():
     with pytest.raises(UserError, match="no edges"):
         build(Stroke(((1, 1),)))
