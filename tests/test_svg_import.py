@@ -261,3 +261,42 @@ def test_reads_files_from_disk(tmp_path):
     assert import_svg(path).name == "shape"
     with pytest.raises(UserError, match="no such file"):
         import_svg(tmp_path / "missing.svg")
+
+
+INKSCAPE = """<?xml version="1.0" encoding="UTF-8" standalone="no"?>
+<!-- Created with Inkscape (http://www.inkscape.org/) -->
+<svg width="210mm" height="297mm" viewBox="0 0 210 297" version="1.1" id="svg5"
+   inkscape:version="1.2.2 (b0a8486541, 2022-12-01)" sodipodi:docname="house.svg"
+   xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"
+   xmlns:sodipodi="http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
+   xmlns="http://www.w3.org/2000/svg" xmlns:svg="http://www.w3.org/2000/svg"
+   xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:cc="http://creativecommons.org/ns#">
+  <sodipodi:namedview id="namedview7" pagecolor="#ffffff" inkscape:zoom="0.7"/>
+  <defs id="defs2"><linearGradient id="g1"><stop offset="0" style="stop-color:#fff"/></linearGradient></defs>
+  <metadata><rdf:RDF><cc:Work rdf:about=""><dc:title xmlns:dc="http://purl.org/dc/elements/1.1/">x</dc:title></cc:Work></rdf:RDF></metadata>
+  <g inkscape:label="Layer 1" inkscape:groupmode="layer" id="layer1" transform="translate(-20,-30)">
+    <path style="fill:#c0f0ff;fill-opacity:1;stroke:#000000;stroke-width:0.264583px;stroke-opacity:1"
+       d="m 40,150 h 120 v -80 H 40 Z" id="rect1" inkscape:label="walls"/>
+    <path style="fill:#ffc0c0;stroke:#000000;stroke-width:0.264583px"
+       d="M 40,70 100,10 160,70 Z" id="roof" sodipodi:nodetypes="cccc"/>
+    <path style="fill:none;stroke:#ff3232;stroke-width:1px" d="m 100,150 v -40" id="door"
+       data-class="door"/>
+  </g>
+  <g inkscape:label="Notes" inkscape:groupmode="layer" style="display:none">
+    <text x="0" y="0">hidden notes</text><rect width="5" height="5" style="fill:#f00"/>
+  </g>
+</svg>
+"""
+
+
+def test_a_real_inkscape_document():
+    src = import_svg("house.svg", INKSCAPE)
+    assert src.name == "house"
+    graph = build_planar_graph(src)
+    assert len(graph.vertices) == 7 and len(graph.edges) == 8
+    labels = {frozenset(e[2:4]) for e in graph.edges}
+    assert labels == {frozenset(("#c0f0ff", "exterior")), frozenset(("#ffc0c0", "exterior")),
+                      frozenset(("#c0f0ff", "#ffc0c0")), frozenset(("#c0f0ff",))}
+    door = [e for e in graph.edges if e[4] == "door"]
+    assert len(door) == 1
+    assert sorted(graph.vertices[v] for v in door[0][:2]) == [(80.0, -120.0), (80.0, -80.0)]
