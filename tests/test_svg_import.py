@@ -300,3 +300,18 @@ def test_a_real_inkscape_document():
     door = [e for e in graph.edges if e[4] == "door"]
     assert len(door) == 1
     assert sorted(graph.vertices[v] for v in door[0][:2]) == [(80.0, -120.0), (80.0, -80.0)]
+
+
+def test_the_documented_example_means_what_the_doc_says():
+    from pathlib import Path
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "svg-import.md").read_text()
+    text = doc.split("```svg\n", 1)[1].split("```", 1)[0]
+    src = import_svg("house.svg", text)
+    graph = build_planar_graph(src)
+    assert src.name == "House"
+    assert {label for e in graph.edges for label in e[2:4]} == {"#c0f0ff", "roof", "exterior"}
+    (door,) = [e for e in graph.edges if e[4] == "door"]
+    assert (280.0, -520.0) in [graph.vertices[v] for v in door[:2]]
+    bottom = [e for e in graph.edges
+              if {graph.vertices[e[0]][1], graph.vertices[e[1]][1]} == {-520.0}]
+    assert len(bottom) == 2                      # the door splits the wall's bottom edge
