@@ -23,11 +23,13 @@ from pathlib import Path
 from typing import Callable
 
 from grammar_lang import __version__
+from grammar_lang import boundary as bd
 from grammar_lang.example import Example
 from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
+from .canon import components
 from .gluing import Graph, block_slots, children
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .matching import Match, Matcher, Piece
@@ -220,6 +222,8 @@ class Inference:
         for node in self.hier.kept():
             if node.status != KEPT or node.checked == self.matcher.version:
                 continue
+            if self._out_of_time():
+                return
             match = self.matcher.find(node.graph.tokens(self.rings), node.rank)
             node.checked = self.matcher.version
             if match is not None:
@@ -266,7 +270,6 @@ class Inference:
         elif len(inter) == 1:
             v, i, w, j = inter[0]
             rest = tuple(e for e in g.edges if e != inter[0])
-            from .canon import components
             parts = components(len(g.verts), rest)
             if len(parts) == 2 and all(len(c) == self.block_size[g.verts[c[0]]] for c in parts):
                 self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
@@ -304,7 +307,6 @@ class Inference:
             for (slot, _), k in zip(h.gaps, pos):
                 items[k] = (slot[0] + off, slot[1])
         boundary: list = []
-        from grammar_lang import boundary as bd
         for k, (_, n) in enumerate(lhs.gaps):
             boundary.append(items[k])
             boundary.extend(bd.turns(n))

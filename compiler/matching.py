@@ -41,12 +41,15 @@ def cyclic_canon(toks: Toks) -> Toks:
 class Matcher:
     """The pieces of the current hierarchy, indexed for Algorithm 2."""
 
-    def __init__(self, splice: bool, budget: int = 20000):
+    def __init__(self, splice: bool, budget: int = 4000):
         self.splice = splice          # False: no rule may splice several graphs (Appendix A)
         self.budget = budget
         self.pieces: dict[int, Piece] = {}
         self.by_string: dict[Toks, list[int]] = {}
-        self.by_token: dict[int, list[int]] = {}
+        # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
+        # group fits a target or not as a whole.
+        self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
+        self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
         self._memo: dict[Toks, tuple[int, Match | None]] = {}
         self._steps = 0
@@ -56,8 +59,7 @@ class Matcher:
         piece = Piece(piece.node, piece.toks, piece.rank, tuple(sorted(c.items())))
         self.pieces[piece.node] = piece
         self.by_string.setdefault(cyclic_canon(piece.toks), []).append(piece.node)
-        for t in sorted(c):
-            self.by_token.setdefault(t, []).append(piece.node)
+        self.by_counts.setdefault(piece.counts, []).append(piece.node)
         self.version += 1
 
     def remove(self, node: int) -> None:
@@ -86,23 +88,27 @@ class Matcher:
         hit = self._memo.get((target, max_half))
         if hit is not None and (hit[1] is not None or hit[0] == self.version):
             return hit[1]
+        self._steps += 1
+        if self._steps > self.budget:
+            raise _OutOfBudget
         res = self._search(target, max_half)
         self._memo[(target, max_half)] = (self.version, res)
         return res
 
     def _candidates(self, target: Toks, max_half: int) -> list[Piece]:
         have = Counter(t for t, _ in target)
-        ids: set[int] = set()
-        for t in have:
-            ids.update(self.by_token.get(t, ()))
+        key = (tuple(sorted(have.items())), max_half)
+        hit = self._cands.get(key)
+        if hit is not None and hit[0] == self.version:
+            return [p for p in hit[1] if p.node in self.pieces]
         out = []
-        for node in ids:
-            p = self.pieces.get(node)
-            if p is None or len(p.toks) > max_half:
+        for counts, ids in self.by_counts.items():
+            if sum(n for _, n in counts) > max_half:
                 continue
-            if all(have.get(t, 0) >= n for t, n in p.counts):
-                out.append(p)
+            if all(have.get(t, 0) >= n for t, n in counts):
+                out.extend(self.pieces[i] for i in ids if i in self.pieces)
         out.sort(key=lambda p: (-len(p.toks), p.rank))
+        self._cands[key] = (self.version, out)
         return out
 
     def _search(self, target: Toks, max_half: int) -> Match | None:
