@@ -220,6 +220,8 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
         a_angle = round(a_angle, 9) % 180.0
         length = lengths[edges[0]] if (cls in rigid and lengths) else None
         protos.append((a_angle, left, right, cls, length, edges, len(gk) > 2))
+    # Readers expect labels in a stable, meaningful order: by class, faces, then direction.
+    protos.sort(key=lambda p: (p[3], rank[p[1]], rank[p[2]], p[0], p[5][0]))
     names = _names(protos, rank)
     for idx, ((a_angle, left, right, cls, length, edges, _), name) in enumerate(zip(protos, names)):
         labels.append(EdgeLabel(name, left, right, a_angle, cls, length))
