@@ -221,13 +221,13 @@ def run_terminal(session: Session) -> int:
     from prompt_toolkit import PromptSession
     from prompt_toolkit.history import FileHistory, InMemoryHistory
 
-    from .repl_commands import Completer
+    from .repl_complete import completer
     try:
         state_dir().mkdir(parents=True, exist_ok=True)
         history = FileHistory(str(state_dir() / "history"))
     except OSError:
         history = InMemoryHistory()
-    prompt = PromptSession(history=history, completer=Completer(session),
+    prompt = PromptSession(history=history, completer=completer(session),
                            complete_while_typing=False)
     session.out.line("ggrun REPL: 'help' lists the commands, 'quit' leaves", style="dim")
 

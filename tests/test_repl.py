@@ -17,10 +17,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from grammar_lang.ggr_emit import emit_ggr
 from runtime.cli import build_parser, main
 from runtime.repl import Output, Session, execute, repl_command
-from runtime.repl_commands import COMMANDS, completions
+from runtime.repl_commands import COMMANDS
+from runtime.repl_complete import completions
 from runtime.verifier import check_drawing
 
 from runtime_grammars import cut_pair, filled_square, lines, lines_with_wire
