@@ -10,7 +10,8 @@ when the global limit of applied steps is reached or no level applies (a termina
 
 Merrell's grammars use every rule in both directions with no preference (paper §6.1): each
 direction is a move with the rule's weight. Grammars written in SPO mode are hand-written
-productions and only run forward (lhs → rhs) unless asked otherwise.
+productions and only run forward (lhs → rhs) unless asked otherwise; there a starter rule
+creates its component (it runs ∅ → lhs) and never deletes one.
 """
 
 from __future__ import annotations
@@ -49,7 +50,8 @@ class Schedule:
         for rule in grammar.rules:
             if rule.weight <= 0:
                 continue
-            dirs = (True, False) if both else (True,)
+            # Forward only, a starter is used to create its component (rhs ∅ → lhs).
+            dirs = (True, False) if both else ((False,) if rule.is_starter else (True,))
             for fwd in dirs:
                 by_level.setdefault(rule.priority, []).append(
                     (DirectedRule.build(rule, fwd, rings), float(rule.weight)))

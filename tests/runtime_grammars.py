@@ -39,7 +39,7 @@ RECT = Side((0, 1, 2, 3), ((0, 0, 1, 0), (0, 1, 3, 0), (1, 1, 2, 1), (2, 0, 3, 1
 def filled_square(mode="dpo") -> Grammar:
     """Rectangles: a starter, and a rule that re-places a rectangle's bottom edge."""
     header = _header(square_labels(), square_prims(), ("in", "exterior"), mode)
-    bottom = Side((0, 1), ((0, 0, 1, 0),), ((1, 1), UP, (0, 1)))
+    bottom = Side((0, 1), ((0, 0, 1, 0),), ((1, 1), (0, 1), UP))
     rules = (Rule("rect", RECT, EMPTY), Rule("bottom", bottom, bottom, weight=0.5))
     return Grammar(header, rules)
 
@@ -77,7 +77,7 @@ def staged(limit_grow_priority: int = 1) -> Grammar:
     """Hand-written style (forward only): make segments at priority 0, grow them after."""
     g = lines("spo")
     seg = Side((0, 1), ((0, 0, 1, 0),), (UP,))
-    make = Rule("make", EMPTY, seg, priority=0)
+    make = Rule("make", seg, EMPTY, priority=0)      # a starter: forward only, it creates
     grow = Rule("grow", Side((0,), (), ((0, 0), UP)),
                 Side((0, 2), ((0, 0, 1, 0),), ((1, 1), UP)), priority=limit_grow_priority)
     return Grammar(g.header, (make, grow))

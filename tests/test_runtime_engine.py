@@ -209,3 +209,11 @@ def test_seeded_generators_only():
     a = _grow("lines", 9).host.to_drawing().to_json()
     np.random.seed(2)
     assert _grow("lines", 9).host.to_drawing().to_json() == a
+
+
+@pytest.mark.parametrize("make", [rg.filled_square, rg.lines, rg.lines_with_wire,
+                                  lambda: rg.cut_pair("spo"), rg.staged])
+def test_hand_built_grammars_are_valid_rule_files(make):
+    from grammar_lang.ggr_parser import parse_ggr
+    g = make()
+    assert parse_ggr(emit_ggr(g), "hand.ggr").rules == g.rules
