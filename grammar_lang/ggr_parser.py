@@ -581,7 +581,7 @@ class _Builder:
             f"the sides of rule '{name}' have different boundaries: "
             f"∂L = {unicode(left, names) or 'ε'} but "
             f"∂R = {unicode(right, names) or 'ε'} (they differ at item {k + 1})",
-            at if isinstance(at, Token) else self._slot(at).span,
+            self._slot(at).span if at.type == "SLOT" else at,
             "the i-th open half-edge of the left side is the same interface point as the i-th "
             "of the right side: list both boundaries in the same order, from the same start, "
             "with the same turns")
@@ -602,7 +602,15 @@ class _Builder:
                 if item.data == "edge":
                     edges.append((self._slot(item.children[0]), self._slot(item.children[1])))
                     continue
-                vtok, ptok = item.children
+                if item.children[0].type == "VERTEX":
+                    vtok, ptok = self._split_vertex(item.children[0])
+                    if item.data == "wire":
+                        if ptok != "wire":
+                            raise self.fail(f"expected 'wire' before the label, not {ptok}", ptok,
+                                            "a wire is declared as 'name: wire label'")
+                        ptok = item.children[1]
+                else:
+                    vtok, ptok = item.children
                 vname = self.name(vtok)
                 if vname in index:
                     raise self.fail(f"'{vname}' is declared twice in this side", vtok)
@@ -638,14 +646,17 @@ class _Builder:
             vname = next(n for n, k in index.items() if k == key)
             return f"{vname}.{bd.format_tokens([ring_of(key)[i]], label_names, ascii=True)}"
 
+        def describe(key: int) -> tuple[str, str]:
+            what = "the wire" if key < 0 else ctx.header.primitives[vertices[key]].name
+            return what, bd.format_tokens(ring_of(key), label_names, ascii=True)
+
         def resolve(slot: _Slot) -> tuple[int, int]:
             key = self.lookup("vertex", slot.vertex, index,
                               "declare it in this side as 'name: primitive'")
             ring = ring_of(key)
-            what = "the wire" if key < 0 else ctx.header.primitives[vertices[key]].name
-            shown = bd.format_tokens(ring, label_names, ascii=True)
             if isinstance(slot.ref, int):
                 if slot.ref >= len(ring):
+                    what, shown = describe(key)
                     raise self.fail(f"{what} has no slot {slot.ref}: it has {len(ring)} "
                                     f"half-edges", slot.span,
                                     f"its half-edges are {shown}, slots 0 to {len(ring) - 1}")
@@ -653,6 +664,7 @@ class _Builder:
             bar, ltok = slot.ref
             token = bd.half(self.lookup("edge label", ltok, ctx.labels), bar)
             if token not in ring:
+                what, shown = describe(key)
                 raise self.fail(f"{self.name(slot.vertex)} ({what}) has no half-edge "
                                 f"{'~' if bar else ''}{self.name(ltok)}", slot.span,
                                 f"its half-edges are {shown}")
@@ -687,7 +699,7 @@ class _Builder:
         seen: dict[tuple[int, int], Span] = {}
         bnode = boundary_nodes[0]
         for item in bnode.children:
-            if isinstance(item, Token):
+            if item.type != "SLOT":
                 items.append(bd.UP if item.type == "UP" else bd.DOWN)
                 continue
             slot = self._slot(item)
@@ -776,17 +788,34 @@ class _Builder:
                             f"walking counter-clockwise around the graph from {show(*first)}, "
                             f"its open half-edges are: {expect}")
 
-    def _slot(self, node: Tree) -> _Slot:
-        vtok, ref = node.children
-        if isinstance(ref, Token):      # a slot index
-            end = ref.column + len(ref)
-            return _Slot(vtok, self.integer(ref), self._range(vtok, end))
-        bar = len(ref.children) == 2
-        ltok = ref.children[-1]
-        return _Slot(vtok, (bar, ltok), self._range(vtok, ltok.column + len(ltok)))
+    def _slot(self, tok: Token) -> _Slot:
+        """Split a SLOT token (`a.x`, `a.~x`, `a.0`, quoted names allowed) into its parts."""
+        m = _SLOT_RE.fullmatch(str(tok))
+        vertex, bar, ref = m.group(1), m.group(2), m.group(3)
+        span = Span(self.path, tok.line, tok.column, len(tok))
+        vtok = Token("STRING" if vertex.startswith('"') else "NAME", vertex,
+                     line=tok.line, column=tok.column)
+        if ref[0].isdigit():
+            itok = Token("INT", ref, line=tok.line, column=tok.column + m.start(3))
+            return _Slot(vtok, self.integer(itok), span)
+        ltok = Token("STRING" if ref.startswith('"') else "NAME", ref,
+                     line=tok.line, column=tok.column + m.start(3))
+        return _Slot(vtok, (bool(bar), ltok), span)
 
-    def _range(self, first: Token, end_column: int) -> Span:
-        return Span(self.path, first.line, first.column, max(1, end_column - first.column))
+
+    def _split_vertex(self, tok: Token) -> tuple[Token, Token]:
+        m = _VERTEX_RE.fullmatch(str(tok))
+        parts = []
+        for g in (1, 2):
+            text = m.group(g)
+            parts.append(Token("STRING" if text.startswith('"') else "NAME", text,
+                               line=tok.line, column=tok.column + m.start(g)))
+        return parts[0], parts[1]
+
+
+_NAME_OR_STRING = r'[^\W\d]\w*|"(?:[^"\\\n]|\\.)*"'
+_SLOT_RE = re.compile(rf"({_NAME_OR_STRING})\.(~?)({_NAME_OR_STRING}|\d+)")
+_VERTEX_RE = re.compile(rf"({_NAME_OR_STRING})[ \t]*:[ \t]*({_NAME_OR_STRING})")
 
 
 @dataclass
