@@ -254,6 +254,10 @@ def run_terminal(session: Session) -> int:
 def repl_command(args: argparse.Namespace, stdin: TextIO | None = None,
                  stdout: TextIO | None = None, stderr: TextIO | None = None,
                  echo: bool = False) -> int:
+    for flag, default in (("out", None), ("count", 1), ("jobs", 1)):
+        if getattr(args, flag) != default:
+            raise error(f"--{flag} has no meaning with --repl", None,
+                        "in the REPL, 'save FILE.json' and 'render FILE.svg' write drawings")
     stdin, stdout, stderr = stdin or sys.stdin, stdout or sys.stdout, stderr or sys.stderr
     interactive = stdin.isatty() and stdout.isatty()
     session = Session(Output(stdout, stderr, colour=interactive), Options.from_args(args))

@@ -380,12 +380,23 @@ def _seed(session: Session, args: list[str]):
 
 # --- looking ----------------------------------------------------------------------------------
 
-@command("show", "the drawing: summary, components, boundary strings of open parts")
+@command("show [COMPONENT]", "the drawing: summary, components, boundary strings of open parts",
+         "With a component's number: its vertices, each with its primitive, position and\n"
+         "neighbours slot by slot ('-' for an open half-edge). Vertex names v12 are the ones\n"
+         "'matches' shows.")
 def _show(session: Session, args: list[str]):
-    _arity(args, "show", 0, 0)
+    _arity(args, "show", 0, 1)
     e = session.need_engine()
     h = e.host
     comps = h.components()
+    if args:
+        k = _whole(args[0], "show", "COMPONENT", 1)
+        if k > len(comps):
+            raise error(f"show: there {'is' if len(comps) == 1 else 'are'} "
+                        f"{_n(len(comps), 'component')}, not {k}", None,
+                        "'show' lists them")
+        _show_component(session, comps[k - 1])
+        return
     session.out.line(f"{session.name}: {_state(session)}, {_n(len(comps), 'component')}, "
                      f"{_n(h.n_open, 'open half-edge')}; seed {e.seed}; "
                      f"{len(e.history)} to undo, {len(e.redo_stack)} to redo", style="bold")
@@ -405,6 +416,17 @@ def _show(session: Session, args: list[str]):
             session.out.line(f"        boundary {_tokens(w, names)}")
     if len(comps) > SHOWN:
         session.out.line(f"… and {len(comps) - SHOWN} more components")
+
+
+def _show_component(session: Session, comp: list[int]) -> None:
+    h = session.engine.host
+    prims = session.grammar.header.primitives
+    names = list(h.t.label_names)
+    for v in comp:
+        ring = h.t.rings[h.prim[v]]
+        slots = "  ".join(f"{_tokens((t,), names)}→{'-' if s is None else f'v{s[0]}'}"
+                          for t, s in zip(ring, h.link[v]))
+        session.out.line(f"v{v:<5} {prims[h.prim[v]].name:<8} {_pt(h.pos[v]):<20} {slots}")
 
 
 def _open_boundaries(h, comp: list[int]) -> list[bd.Tokens]:

@@ -183,6 +183,31 @@ def test_show_gives_boundary_strings_of_open_parts():
     assert "boundary ∧ x\n" in text and "boundary ∧ x̄\n" in text
 
 
+def test_show_component_lists_vertices_slot_by_slot():
+    s, buf = session(cut_pair("spo"))
+    for line in ["apply segment --backward", "apply segment --backward", "apply cut 1"]:
+        assert execute(s, line)
+    comps = s.engine.host.components()
+    lone = next(k for k, c in enumerate(comps) if len(c) == 1)
+    assert execute(s, f"show {lone + 1}")
+    assert re.search(rf"^v{comps[lone][0]}\s+[LR]\s+\(.*\)\s+x̄?→-$", buf.getvalue(), re.M)
+    assert not execute(s, f"show {len(comps) + 1}") and "'show' lists them" in buf.getvalue()
+
+
+def test_interrupt_stops_between_steps_and_keeps_them():
+    s, buf = session(filled_square())
+    s.interrupted = True          # what Ctrl-C does during a command on a terminal
+    assert not execute(s, "run 50")
+    assert "interrupted" in buf.getvalue()
+    assert len(s.engine.history) <= 1 and s.engine.host.check_consistency() == []
+    assert execute(s, "run 3") and len(s.engine.history) >= 1
+
+
+def test_file_flags_of_ggrun_are_refused_with_the_repl():
+    for flags in (["--out", "x.svg"], ["--count", "2"], ["--jobs", "2"]):
+        assert main([str(GRAMMAR), "--repl", *flags]) == 2
+
+
 def test_matches_are_numbered_and_apply_takes_the_number():
     s, buf = session(lines())
     for _ in range(2):
