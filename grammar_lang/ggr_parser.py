@@ -4,8 +4,9 @@ Parsing has two stages. The lark grammar (ggr_grammar.lark) checks the shape of 
 `_Builder` then resolves names and checks everything a hand edit can break: known faces,
 classes, labels, primitives and vertices, rings in angle order, slots glued once and only to
 their opposite half-edge, every open half-edge once on the boundary, P − N = 1 on each side,
-∂L = ∂R, and starters with a complete left side and no right side. Every problem is a
-`UserError` at its line and column, with a caret excerpt and a hint.
+boundaries that follow the rotation system (`graph.face_walk`), ∂L = ∂R, and starters with a
+complete left side and no right side. Every problem is a `UserError` at its line and column,
+with a caret excerpt and a hint.
 """
 
 from __future__ import annotations
