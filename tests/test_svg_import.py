@@ -315,3 +315,9 @@ def test_the_documented_example_means_what_the_doc_says():
     bottom = [e for e in graph.edges
               if {graph.vertices[e[0]][1], graph.vertices[e[1]][1]} == {-520.0}]
     assert len(bottom) == 2                      # the door splits the wall's bottom edge
+
+
+def test_data_class_on_a_filled_shape_classes_its_outline():
+    graph = build_planar_graph(load('<rect width="4" height="4" fill="#c0f0ff" stroke="#000" '
+                                    'data-class="wall"/>'))
+    assert {e[4] for e in graph.edges} == {"wall"}
