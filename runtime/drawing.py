@@ -121,8 +121,10 @@ def drawing_from_example(example) -> Drawing:
     pos = p0
     if rows:
         a = np.array(rows)
-        delta = np.linalg.lstsq(a, np.array(rhs) - a @ p0, rcond=None)[0]
-        pos = p0 + delta
+        residual = np.array(rhs) - a @ p0
+        # Already exact (drawn on a grid, say): keep the coordinates as they are.
+        if np.abs(residual).max() > 1e-12 * max(1.0, np.abs(p0).max()):
+            pos = p0 + np.linalg.lstsq(a, residual, rcond=None)[0]
     xy = pos.reshape(-1, 2)
     vertices = tuple(DVertex(i, float(x), float(y)) for i, (x, y) in enumerate(xy))
     edges = []

@@ -553,3 +553,53 @@ def test_half_edges_out_of_their_primitives_order():
     assert centre(check_drawing(ref, star([1.0, 4.0, 90.0]))) == []
     swapped = centre(check_drawing(ref, star([6.0, 1.0, 90.0])))
     assert len(swapped) == 1 and "not in the order of primitive p" in swapped[0].message
+
+
+# --- docs/drawing-format.md -----------------------------------------------------------------
+
+
+
+def doc_blocks():
+    import re
+    from conftest import ROOT as repo
+    text = (repo / "docs" / "drawing-format.md").read_text()
+    return repo, re.findall(r"```(\w+)\n(.*?)```", text, re.S)
+
+
+def test_doc_example_is_the_house_drawn_as_itself():
+    repo, blocks = doc_blocks()
+    [doc] = [b for lang, b in blocks if lang == "json"]
+    d = parse_drawing(doc)
+    house = load_example(repo / "examples" / "house.gg")
+    assert check_drawing(house, d) == []
+    own = drawing_from_example(house)
+    assert (d.vertices, d.edges) == (own.vertices, own.edges)
+    assert d.meta == {"example": "House"}
+
+
+def test_doc_sessions_print_what_they_show(tmp_path, capsys, monkeypatch):
+    repo, blocks = doc_blocks()
+    [doc] = [b for lang, b in blocks if lang == "json"]
+    d = parse_drawing(doc)
+    d.save(tmp_path / "house.json")
+    wide = replace(d, vertices=tuple(DVertex(v.id, 400.0, v.y) if v.id in (7, 8) else v
+                                     for v in d.vertices))
+    wide.save(tmp_path / "house-wide.json")
+    monkeypatch.chdir(repo)
+    ran = 0
+    for lang, block in blocks:
+        command, *expected = block.splitlines()
+        if lang != "console" or not command.startswith("$ ggrun check examples/"):
+            continue
+        args = command.split()[2:]
+        args[-1] = str(tmp_path / args[-1])
+        code, out, _ = ggrun(capsys, *args)
+        assert out.splitlines() == expected
+        assert code == (0 if expected[0].startswith("ok:") else 1)
+        ran += 1
+    assert ran == 2
+    [snippet] = [b for lang, b in blocks if lang == "python"]
+    (tmp_path / "examples").symlink_to(repo / "examples")
+    monkeypatch.chdir(tmp_path)
+    exec(compile(snippet, "drawing-format.md", "exec"), {})
+    assert capsys.readouterr().out == ""       # the house passes: nothing to print
