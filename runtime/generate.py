@@ -49,6 +49,9 @@ class StepRecord:
 class Outcome:
     applied: StepRecord | None
     reason: str = ""                  # why not applied: 'cost', a geometry failure, 'terminal'
+    # What step() proposed, applied or not (the REPL shows it).
+    move: DirectedRule | None = None
+    match: Match | None = None
 
 
 @dataclass
@@ -121,7 +124,9 @@ class Engine:
         if choice is None:
             return Outcome(None, "terminal")
         level, move, match = choice
-        return self.apply(move, match, priority=level.priority)
+        out = self.apply(move, match, priority=level.priority)
+        out.move, out.match = move, match
+        return out
 
     def apply(self, move: DirectedRule, match: Match, priority: int | None = None,
               use_cost: bool = True) -> Outcome:
