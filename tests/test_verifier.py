@@ -603,3 +603,25 @@ def test_doc_sessions_print_what_they_show(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     exec(compile(snippet, "drawing-format.md", "exec"), {})
     assert capsys.readouterr().out == ""       # the house passes: nothing to print
+
+
+@pytest.mark.parametrize("name", ["house-filled", "h-complex", "star-crossing"])
+def test_check_against_a_grammar_file(tmp_path, capsys, name):
+    """A .ggr records the example's types in its header: checking against it or against the
+    example gives the same verdicts."""
+    from grammar_lang.ggr_emit import emit_ggr
+    from grammar_lang.rules import Grammar
+    ex = example(name)
+    header = Header(source=str(ex.path), exterior=ex.exterior, face_labels=ex.face_labels,
+                    classes=ex.classes, labels=ex.labels, primitives=ex.primitives,
+                    options=ex.options, unit=ex.unit, decorations=ex.decorations)
+    ggr = tmp_path / f"{name}.ggr"
+    ggr.write_text(emit_ggr(Grammar(header, ())))
+    good, bad = tmp_path / "good.json", tmp_path / "bad.json"
+    d = own_drawing(name)
+    d.save(good)
+    transformed(d, lambda q: q * 3).save(bad)
+    for path, code in ((good, 0), (bad, 1)):
+        got = ggrun(capsys, "check", ggr, path)
+        assert got[0] == code
+        assert got[1] == ggrun(capsys, "check", CORPUS / f"{name}.svg", path)[1]
