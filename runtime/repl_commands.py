@@ -263,7 +263,9 @@ def _step(session: Session, args: list[str]):
                 break
             rec = out.applied
             if rec is None:
-                session.out.line(f"{k + 1:>4}  rejected ({out.reason})", style="dim")
+                # The match is still there to describe, as nothing was changed.
+                session.out.line(f"{k + 1:>4}  {out.move.name} rejected ({out.reason}): "
+                                 f"{_describe(session, out.move, out.match)}", style="dim")
             else:
                 session.out.line(f"{k + 1:>4}  {_step_name(rec)}: −{len(rec.removed)} "
                                  f"+{len(rec.added)} vertices; now {_state(session)}")
