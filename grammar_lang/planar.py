@@ -236,21 +236,22 @@ class _Builder:
         # The last region painting both sides of a piece hides every earlier source of it.
         both = cover[left_face].multiply(cover[right_face]).tocsr()
         hidden_after = _last_per_row(both, np.array([s.order for s in regions], dtype=np.int64))
+        kinds = [item.kind for item in self.items]
+        orders = [item.order for item in self.items]
+        ends, lefts, rights = pieces.ends.tolist(), left_face.tolist(), right_face.tolist()
         kept: list[tuple[int, int, str, str, str, Span | None]] = []
-        for e, srcs in enumerate(pieces.sources):
-            visible = [self.items[sid] for sid, _ in srcs
-                       if self.items[sid].kind == "explicit"
-                       or self.items[sid].order >= hidden_after[e]]
+        for e, (srcs, hidden) in enumerate(zip(pieces.sources, hidden_after.tolist())):
+            visible = [sid for sid, _ in srcs if kinds[sid] == "explicit" or orders[sid] >= hidden]
             if not visible:
                 continue
             # A line's class beats a bare outline; among lines the last drawn wins.
-            classed = [s for s in visible if s.kind != "region"]
-            decider = max(classed or visible, key=lambda s: s.order)
-            cls = DEFAULT_CLASS if decider.kind == "region" else decider.paint.cls
-            u, v = (int(x) for x in pieces.ends[e])
-            kept.append((u, v, labels[left_face[e]], labels[right_face[e]], cls,
-                         decider.paint.span))
-        kept = _dissolve(kept, pieces.is_input)
+            classed = [sid for sid in visible if kinds[sid] != "region"]
+            decider = max(classed or visible, key=orders.__getitem__)
+            paint = self.items[decider].paint
+            cls = DEFAULT_CLASS if kinds[decider] == "region" else paint.cls
+            kept.append((ends[e][0], ends[e][1], labels[lefts[e]], labels[rights[e]], cls,
+                         paint.span))
+        kept = _dissolve(kept, pieces.vertices, pieces.is_input)
         return _canonical(pieces.vertices, kept)
 
 
@@ -303,19 +304,21 @@ def _face_samples(vertices: np.ndarray, ends: np.ndarray, faces) -> np.ndarray:
     return samples
 
 
-def _dissolve(kept, is_input):
+def _dissolve(kept, vertices: np.ndarray, is_input: np.ndarray):
     """Join the two pieces at a vertex noding made (not one the user drew) when only they are
-    left there and they carry the same labels and class: it was a crossing with something that
-    turned out hidden."""
-    degree: dict[int, list[int]] = {}
+    left there, run straight on, and carry the same labels and class: it was a crossing with
+    something that turned out hidden."""
+    made = set(np.flatnonzero(~is_input).tolist())
+    if not made:
+        return kept
+    at: dict[int, list[int]] = {}
     for k, (u, v, *_rest) in enumerate(kept):
-        degree.setdefault(u, []).append(k)
-        degree.setdefault(v, []).append(k)
+        for end in (u, v):
+            if end in made:
+                at.setdefault(end, []).append(k)
     alive = list(kept)
-    for vertex in sorted(degree):
-        if is_input[vertex]:
-            continue
-        ks = [k for k in degree[vertex] if alive[k] is not None]
+    for vertex in sorted(at):
+        ks = [k for k in at[vertex] if alive[k] is not None]
         if len(ks) != 2:
             continue
         e1, e2 = alive[ks[0]], alive[ks[1]]
@@ -326,10 +329,14 @@ def _dissolve(kept, is_input):
             e2 = (e2[1], e2[0], e2[3], e2[2], e2[4], e2[5])
         if e1[2:5] != e2[2:5] or e1[0] == e2[1]:
             continue
-        joined = (e1[0], e2[1], e1[2], e1[3], e1[4], e1[5] or e2[5])
-        alive[ks[0]], alive[ks[1]] = joined, None
-        for end in (e2[1],):
-            degree[end] = [ks[0] if k == ks[1] else k for k in degree[end]]
+        da, db = vertices[vertex] - vertices[e1[0]], vertices[e2[1]] - vertices[vertex]
+        if abs(da[0] * db[1] - da[1] * db[0]) > 1e-9 * np.hypot(*da) * np.hypot(*db) \
+                or da @ db <= 0:
+            continue
+        alive[ks[0]], alive[ks[1]] = (e1[0], e2[1], e1[2], e1[3], e1[4], e1[5] or e2[5]), None
+        far = e2[1]
+        if far in at:
+            at[far] = [ks[0] if k == ks[1] else k for k in at[far]]
     return [k for k in alive if k is not None]
 
 
