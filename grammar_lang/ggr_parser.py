@@ -375,6 +375,11 @@ class _Builder:
         class_names = {c.name for c in classes} | {DEFAULT_CLASS}
         labels = self._defined(self._label, lists["label"], known_faces, class_names)
         fields["labels"] = tuple(labels)
+        if any(l.cls == DEFAULT_CLASS for l in labels) and DEFAULT_CLASS not in \
+                {c.name for c in classes}:
+            # The default class exists without a line of its own; list it like the others so
+            # that every class a label uses is in the header.
+            fields["classes"] = tuple(classes) + (EdgeClass(DEFAULT_CLASS),)
         self._unique(lists["label"], "edge label")
         self._unique(lists["edge_class"], "edge class")
         label_ids = {l.name: i for i, l in enumerate(labels)}

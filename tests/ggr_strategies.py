@@ -57,6 +57,9 @@ def headers(draw) -> Header:
                              draw(angles), draw(st.sampled_from(class_names)),
                              draw(st.none() | positive))
                    for n in draw(unique(names, 1, 4)))
+    if any(l.cls == DEFAULT_CLASS for l in labels) and DEFAULT_CLASS not in \
+            {c.name for c in classes}:
+        classes += (EdgeClass(DEFAULT_CLASS),)     # every class a label uses is declared
     tokens = [bd.half(i, bar) for i in range(len(labels)) for bar in (False, True)]
     prim_names = draw(unique(names, 2, 6))
     prims = []
