@@ -89,7 +89,10 @@ def compute_faces(xy: np.ndarray, edges: np.ndarray) -> Faces:
             h = int(nxt[h])
         cycles.append(tuple(walk))
     src, dst = half_ends(edges)
-    cross = xy[src, 0] * xy[dst, 1] - xy[dst, 0] * xy[src, 1]
+    # About a vertex of the drawing, so far-off drawings keep their precision.
+    q = xy - xy[0] if n else xy
+    with np.errstate(over="ignore", invalid="ignore"):
+        cross = q[src, 0] * q[dst, 1] - q[dst, 0] * q[src, 1]
     area = np.bincount(cycle_of, weights=cross, minlength=len(cycles)) / 2.0 if m else np.zeros(0)
 
     graph = coo_matrix((np.ones(m), (edges[:, 0], edges[:, 1])), shape=(n, n))

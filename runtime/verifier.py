@@ -40,6 +40,8 @@ COORD_SLACK = 2e-6
 # Segments meeting at a smaller angle (its sine) run along each other: an overlap, whatever
 # rounding says about where exactly they meet.
 PARALLEL_SINE = 1e-9
+# Coordinates beyond this are refused: float spacing there exceeds the precision checked.
+MAX_COORD = 1e12
 # Vertices closer than this fraction of the drawing's extent are one point.
 COINCIDE_FRACTION = 1e-9
 
@@ -191,7 +193,8 @@ def _geometry(drawing: Drawing) -> _Geometry:
     index = {v: i for i, v in enumerate(ids)}
     xy = np.array([(v.x, v.y) for v in drawing.vertices], dtype=float).reshape(-1, 2)
     ends = np.array([(index[e.u], index[e.v]) for e in drawing.edges], dtype=np.int64).reshape(-1, 2)
-    d = xy[ends[:, 1]] - xy[ends[:, 0]]
+    with np.errstate(invalid="ignore", over="ignore"):
+        d = xy[ends[:, 1]] - xy[ends[:, 0]]
     return _Geometry(ids, xy, ends, np.degrees(np.arctan2(d[:, 1], d[:, 0])), np.hypot(d[:, 0], d[:, 1]))
 
 
@@ -206,6 +209,15 @@ def check_drawing(reference, drawing: Drawing, tolerance: float | None = None) -
     tol = ref.angle_tolerance if tolerance is None else float(tolerance)
     g = _geometry(drawing)
     ctx = _Context(ref, ix, drawing, g, tol)
+    with np.errstate(invalid="ignore"):
+        bad = np.flatnonzero(~(np.abs(g.xy) <= MAX_COORD).all(axis=1))
+    if len(bad):
+        # Nothing geometric can be said about points that are nowhere (NaN, infinity), or so
+        # far out that float spacing is coarser than the checks' precision.
+        for i in bad.tolist():
+            ctx.fail("degenerate", f"vertex {g.ids[i]} has a coordinate that is not a number "
+                     f"within ±{MAX_COORD:g}", (g.ids[i],), found=f"({g.xy[i, 0]}, {g.xy[i, 1]})")
+        return ctx.failures
     ctx.degenerate()
     ctx.assign_labels()
     ctx.rings()

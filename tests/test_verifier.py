@@ -625,3 +625,47 @@ def test_check_against_a_grammar_file(tmp_path, capsys, name):
         got = ggrun(capsys, "check", ggr, path)
         assert got[0] == code
         assert got[1] == ggrun(capsys, "check", CORPUS / f"{name}.svg", path)[1]
+
+
+# --- robustness ------------------------------------------------------------------------------
+
+coords = st.one_of(st.integers(-3, 3).map(float),
+                   st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False),
+                   st.sampled_from([float("nan"), float("inf"), 1e300, -0.0]))
+
+
+@st.composite
+def messy_drawings(draw):
+    name = draw(st.sampled_from(NAMES))
+    ex = example(name)
+    n = draw(st.integers(0, 8))
+    verts = tuple(DVertex(i * 3, draw(coords), draw(coords)) for i in range(n))
+    faces = list(ex.face_labels) + ["junk"]
+    classes = [c.name for c in ex.classes] + ["9"]
+    labels = [None, "nope"] + [l.name for l in ex.labels]
+    edges = []
+    if n:
+        for _ in range(draw(st.integers(0, 12))):
+            edges.append(DEdge(draw(st.integers(0, n - 1)) * 3, draw(st.integers(0, n - 1)) * 3,
+                               draw(st.sampled_from(faces)), draw(st.sampled_from(faces)),
+                               draw(st.sampled_from(classes)), draw(st.sampled_from(labels))))
+    return name, Drawing(verts, tuple(edges))
+
+
+@settings(max_examples=300, deadline=None)
+@given(messy_drawings())
+def test_any_drawing_gets_an_answer_not_a_crash(case):
+    from runtime.svg_out import render_svg
+    from runtime.verifier import KINDS
+    name, d = case
+    failures = check_drawing(example(name), d)
+    for f in failures:
+        assert f.kind in KINDS
+        assert f.render()
+    if all(math.isfinite(c) for v in d.vertices for c in (v.x, v.y)):
+        parse(render_svg(d, example(name)))
+
+
+def parse(text):
+    import defusedxml.ElementTree as ET
+    return ET.fromstring(text)
