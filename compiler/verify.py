@@ -89,7 +89,7 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
 
 
 class Reducer:
-    def __init__(self, grammar: Grammar, budget: int = 20000):
+    def __init__(self, grammar: Grammar, budget: int = 3000):
         self.rings = grammar.rings
         self.ring_len = [len(r) for r in self.rings]
         self.rules = []
