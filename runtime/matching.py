@@ -18,7 +18,7 @@ import numpy as np
 from grammar_lang.graph import Side, Slot
 
 from .host import Host
-from .spatial import seg_near
+from .spatial import segments_meet
 
 # How far (in units) the components of a spliced side may lie from each other.
 SPLICE_RADIUS = 2.5
@@ -41,6 +41,7 @@ class Pattern:
     # A wire (bare edge) matches a host edge of its label: per wire, the (primitive, slot)
     # pairs where its end-0 partner, a barred half-edge, can sit.
     wire_slots: tuple[tuple[tuple[int, int], ...], ...] = ()
+    part_of: tuple[int, ...] = ()                # component index of each pattern vertex
 
     @staticmethod
     def build(side: Side, rings=()) -> "Pattern":
@@ -79,7 +80,8 @@ class Pattern:
         wire_slots = tuple(
             tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
             for tok in side.wires)
-        return Pattern(side, tuple(comps), opens, tuple(splices), wire_slots)
+        part_of = tuple(comp_of[v] for v in range(len(side.vertices)))
+        return Pattern(side, tuple(comps), opens, tuple(splices), wire_slots, part_of)
 
 
 def _ring_len(side: Side, u: int, partner: dict) -> int:
@@ -141,15 +143,14 @@ def _glue_ok(host: Host, pattern: Pattern, vmap: dict, spo: bool) -> bool:
 
 
 def _visible(host: Host, a: int, b: int) -> bool:
-    """No host edge crosses the straight segment between vertices a and b."""
+    """No host edge crosses or touches the straight segment between vertices a and b."""
     pa, pb = host.pos[a], host.pos[b]
-    eps = 1e-9 * host.t.unit
     link, pos = host.link, host.pos
     for v, i in host.grid.segments_along(pa, pb):
         w = link[v][i][0]
         if a in (v, w) or b in (v, w):
             continue
-        if seg_near(pa, pb, pos[v], pos[w], eps):
+        if segments_meet(pa, pb, pos[v], pos[w]):
             return False
     return True
 
@@ -169,11 +170,48 @@ def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
     return [h for h in _comp_candidates_any(host, near) if host.prim[h] == prim]
 
 
+class _Budget:
+    """How many candidate extensions a random search may try before it gives up (spliced
+    sides can otherwise multiply candidates); exhaustive searches have no budget."""
+
+    def __init__(self, n: int | None, probes: int | None = None):
+        self.n = n if probes is None or n is None else min(n, PROBE_BUDGET)
+        self.probes = probes            # how many anchor candidates of the first part to try
+
+    def spend(self) -> bool:
+        if self.n is None:
+            return True
+        self.n -= 1
+        return self.n >= 0
+
+
+RANDOM_BUDGET = 300
+PROBE_BUDGET = 40
+
+
+def _splices_ok(host: Host, pattern: Pattern, vmap: dict, wires: tuple, part: int) -> bool:
+    """Check the splices that became checkable once part `part` (components, then wires) is
+    matched: both their ends must see each other across the face."""
+    nc = len(pattern.components)
+    comp_of = pattern.part_of
+
+    def part_of(s: Slot) -> int:
+        return comp_of[s[0]] if s[0] >= 0 else nc + (-1 - s[0])
+
+    def at(s: Slot) -> int:
+        return vmap[s[0]] if s[0] >= 0 else wires[-1 - s[0]][s[1]][0]
+
+    for a, b in pattern.splices:
+        if max(part_of(a), part_of(b)) == part and not _visible(host, at(a), at(b)):
+            return False
+    return True
+
+
 def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
-            rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
+            rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, tuple]]:
     if ci == len(pattern.components):
         if _glue_ok(host, pattern, vmap, spo):
-            yield from _search_wires(host, pattern, 0, vmap, (), rng)
+            yield from _search_wires(host, pattern, 0, vmap, (), rng, budget)
         return
     comp = pattern.components[ci]
     k = _anchor(host, pattern, comp)
@@ -185,21 +223,25 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
         order = sorted(cands)
     else:
         start = int(rng.integers(n))
-        order = (cands[(start + m) % n] for m in range(n))
+        if ci == 0 and budget.probes is not None:
+            # A probe: random anchors only, so a failed try costs O(probes), not O(n).
+            order = (cands[int(j)] for j in rng.integers(n, size=min(n, budget.probes)))
+        else:
+            order = (cands[(start + m) % n] for m in range(n))
     anchor = comp.vertices[k]
     for h in order:
+        if ci and not budget.spend():
+            return
         trial = dict(vmap)
-        if _extend(host, pattern.side, comp.plans[k], anchor, h, trial):
-            yield from _search(host, pattern, ci + 1, trial, spo, rng)
+        if (_extend(host, pattern.side, comp.plans[k], anchor, h, trial)
+                and _splices_ok(host, pattern, trial, (), ci)):
+            yield from _search(host, pattern, ci + 1, trial, spo, rng, budget)
 
 
 def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tuple,
-                  rng: np.random.Generator | None) -> Iterator[tuple[dict, tuple]]:
+                  rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, tuple]]:
     if wi == len(pattern.wire_slots):
-        def at(s: Slot) -> int:
-            return vmap[s[0]] if s[0] >= 0 else wires[-1 - s[0]][s[1]][0]
-        if all(_visible(host, at(a), at(b)) for a, b in pattern.splices):
-            yield vmap, wires
+        yield vmap, wires
         return
     image = set(vmap.values())
     taken = {s for pair in wires for s in pair}
@@ -214,6 +256,7 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
     if total == 0:
         return
     start = 0 if rng is None else int(rng.integers(total))
+    part = len(pattern.components) + wi
     for m in range(total):
         k = (start + m) % total
         for i, lst in lists:
@@ -225,7 +268,11 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         s0 = (h, i)
         if s1 is None or h in image or s1[0] in image or s0 in taken:
             continue
-        yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng)
+        if placed and not budget.spend():
+            return
+        trial = wires + ((s0, s1),)
+        if _splices_ok(host, pattern, vmap, trial, part):
+            yield from _search_wires(host, pattern, wi + 1, vmap, trial, rng, budget)
 
 
 def _comp_candidates_any(host: Host, near: dict) -> list[int]:
@@ -241,9 +288,11 @@ def _match(pattern: Pattern, found) -> Match:
 
 
 def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
-               spo: bool = False) -> Match | None:
-    """A random match, or None when there is none."""
-    for found in _search(host, pattern, 0, {}, spo, rng):
+               spo: bool = False, probes: int | None = None) -> Match | None:
+    """A random match, or None when none was found within the search budget (a budget only
+    binds for spliced sides, whose later components multiply the candidates). With `probes`,
+    only that many random anchors are tried: cheap, but None then proves nothing."""
+    for found in _search(host, pattern, 0, {}, spo, rng, _Budget(RANDOM_BUDGET, probes)):
         return _match(pattern, found)
     return None
 
@@ -251,7 +300,7 @@ def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
 def iter_matches(host: Host, pattern: Pattern, spo: bool = False) -> Iterator[Match]:
     """Every match, in a deterministic order (ascending anchor vertex ids)."""
     seen = set()
-    for found in _search(host, pattern, 0, {}, spo, None):
+    for found in _search(host, pattern, 0, {}, spo, None, _Budget(None)):
         m = _match(pattern, found)
         # Automorphic images of the same vertex set are distinct matches; only exact
         # duplicates (found through two anchors) are dropped.

@@ -4,7 +4,9 @@ Each step looks at the priority levels in ascending order (a lower value runs fi
 the first level that (a) has not reached its own step limit and (b) has a rule with a match.
 Within that level a move (a rule in one direction) is drawn with probability proportional to
 its weight; if it has no match it is set aside for this step and another is drawn, so a level
-is passed over only when none of its moves applies. A level that has been passed over is looked
+is passed over only when none of its moves applies. To keep a step's cost independent of the
+drawing's size, the draw is made twice: first each move is tried at a few random anchors only,
+and only when all moves fail that way are they searched exhaustively. A level that has been passed over is looked
 at again on the next step, since later rewrites can make it applicable again. Generation ends
 when the global limit of applied steps is reached or no level applies (a terminal drawing).
 
@@ -25,6 +27,10 @@ from grammar_lang.rules import Grammar
 from .host import Host
 from .matching import Match, find_match
 from .rewrite import DirectedRule
+
+
+# Random anchors tried per move in the cheap first pass.
+PROBES = 8
 
 
 @dataclass(frozen=True)
@@ -70,15 +76,23 @@ class Schedule:
         for level in self.levels:
             if level.limit is not None and applied.get(level.priority, 0) >= level.limit:
                 continue
-            w = np.array(level.weights, dtype=float)
-            while True:
-                total = float(w.sum())
-                if total <= 0:
-                    break
-                k = int(np.searchsorted(np.cumsum(w), rng.random() * total, side="right"))
-                k = min(k, len(w) - 1)
-                match = find_match(host, level.moves[k].pattern, rng, self.spo)
-                if match is not None:
-                    return level, level.moves[k], match
-                w[k] = 0.0
+            # First cheap probes (a few random anchors per move), then exact searches, so a
+            # step costs O(moves) and a level is still only passed over when nothing applies.
+            for probes in (PROBES, None):
+                found = self._draw(level, host, rng, probes)
+                if found is not None:
+                    return level, found[0], found[1]
         return None
+
+    def _draw(self, level: Level, host: Host, rng: np.random.Generator, probes: int | None):
+        w = np.array(level.weights, dtype=float)
+        while True:
+            total = float(w.sum())
+            if total <= 0:
+                return None
+            k = int(np.searchsorted(np.cumsum(w), rng.random() * total, side="right"))
+            k = min(k, len(w) - 1)
+            match = find_match(host, level.moves[k].pattern, rng, self.spo, probes)
+            if match is not None:
+                return level.moves[k], match
+            w[k] = 0.0
