@@ -15,7 +15,6 @@ so a bug there cannot hide itself here.
 
 from __future__ import annotations
 
-import math
 import sys
 from collections import Counter, defaultdict
 from dataclasses import dataclass

@@ -3,14 +3,13 @@ text is deterministic."""
 
 import re
 from dataclasses import replace
-from pathlib import Path
 
 import defusedxml.ElementTree as ET
 import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from conftest import CORPUS, corpus_names
+from conftest import corpus_names
 from grammar_lang.loader import load_example, load_source
 from grammar_lang.planar import build_planar_graph
 from runtime.drawing import Drawing, DVertex, drawing_from_example
