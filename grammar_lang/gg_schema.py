@@ -11,7 +11,10 @@ from pathlib import Path
 
 from . import gg_ast as A
 from .diagnostics import did_you_mean, error
+from .source import EdgeClass, Limits, Options
 from .svg_colors import NAMED, normalize_color
+
+_O, _L = Options(), Limits()   # the defaults the docs of each setting quote
 
 IMAGE_SUFFIXES = (".svg", ".png", ".jpg", ".jpeg", ".gif", ".webp")
 _BOOLS = {"yes": True, "true": True, "on": True, "no": False, "false": False, "off": False}
@@ -71,9 +74,10 @@ def _positive(kind: str, doc: str) -> Field:
 
 OPTIONS = {
     "angle-tolerance": Field("angle", 0, 45, hi_open=True,
-                             doc="directions closer than this are one edge label (default 10°)"),
+                             doc="directions closer than this are one edge label "
+                                 f"(default {_O.angle_tolerance:g}°)"),
     "snap-angle": Field("angle", 0, 90, doc="snap label directions to multiples of this "
-                                            "(default 15°, 0 = off)"),
+                                            f"(default {_O.snap_angle:g}°, 0 = off)"),
     "merge-distance": Field("length", 0, doc="points closer than this are one vertex "
                                              "(default 0.5 % of the drawing's diagonal)"),
     "unit": _positive("length", "the length that class defaults are relative to "
@@ -82,14 +86,17 @@ OPTIONS = {
     "no-loops": Field("bool", doc="generate trees and streams without loops (Appendix A)"),
 }
 LIMITS = {
-    "generations": Field("int", 1, 1000, doc="gluing generations of the hierarchy (default 12)"),
-    "half-edges": Field("int", 1, 1000, doc="most open half-edges of a graph (default 12)"),
-    "graphs": Field("int", 1, 10**9, doc="most graphs in the hierarchy (default 20000)"),
-    "time": _positive("seconds", "time budget of the inference (default 20 s)"),
+    "generations": Field("int", 1, 1000, doc="gluing generations of the hierarchy "
+                                          f"(default {_L.generations})"),
+    "half-edges": Field("int", 1, 1000, doc="most open half-edges of a graph "
+                                         f"(default {_L.half_edges})"),
+    "graphs": Field("int", 1, 10**9, doc="most graphs in the hierarchy "
+                                          f"(default {_L.graphs})"),
+    "time": _positive("seconds", f"time budget of the inference (default {_L.seconds:g} s)"),
 }
 CLASS = {
-    "min": Field("length", 0, doc="shortest length (default 0.1 × unit)"),
-    "max": _positive("length", "longest length (default 4 × unit)"),
+    "min": Field("length", 0, doc=f"shortest length (default {EdgeClass.DEFAULT_MIN:g} × unit)"),
+    "max": _positive("length", f"longest length (default {EdgeClass.DEFAULT_MAX:g} × unit)"),
     "fixed": _positive("length", "every edge has exactly this length"),
     "tile": _positive("length", "lengths are whole multiples of this"),
     "rigid": Field("bool", doc="the edge keeps the exact vector it has in the example"),
