@@ -27,8 +27,9 @@ def load_example_json(path: str | Path) -> ExampleSource:
                     'the top-level object needs "format": "gg-example/1"')
     try:
         pts = [(float(x), float(y)) for x, y in doc["vertices"]]
-        edges = [ExplicitEdge(pts[int(u)], pts[int(v)], str(l), str(r), str(c), Span(where))
-                 for u, v, l, r, c in doc["edges"]]
+        places = _edge_places(text, where, len(doc["edges"]))
+        edges = [ExplicitEdge(pts[int(u)], pts[int(v)], str(l), str(r), str(c), span)
+                 for (u, v, l, r, c), span in zip(doc["edges"], places)]
         classes = {
             str(name): EdgeClass(str(name),
                                  float(spec.get("min_length", 0.1)) * GRID,
@@ -41,3 +42,31 @@ def load_example_json(path: str | Path) -> ExampleSource:
                     'vertices are [x, y]; edges are [u, v, left, right, class]')
     return ExampleSource(path=where, name=str(doc.get("name", Path(path).stem)),
                          paint=list(edges), classes=classes, text=text)
+
+
+def _edge_places(text: str, where: str, count: int) -> list[Span]:
+    """Where each entry of the "edges" array starts, so diagnostics (and the drawing order that
+    direction typing follows) refer to the file. Falls back to the file alone."""
+    start = text.find('"edges"')
+    spans: list[Span] = []
+    if start >= 0:
+        i = text.find("[", start) + 1
+        depth, in_str, esc = 0, False, False
+        while 0 < i < len(text) and len(spans) < count:
+            ch = text[i]
+            if in_str:
+                esc, in_str = (False, in_str) if esc else (ch == "\\", ch != '"')
+            elif ch == '"':
+                in_str = True
+            elif ch == "[":
+                if depth == 0:
+                    line = text.count("\n", 0, i) + 1
+                    spans.append(Span(where, line, i - (text.rfind("\n", 0, i) + 1) + 1))
+                depth += 1
+            elif ch == "]":
+                if depth == 0:
+                    break
+                depth -= 1
+            i += 1
+    return spans if len(spans) == count else [Span(where)] * count
+
