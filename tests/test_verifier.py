@@ -656,3 +656,40 @@ def test_any_drawing_gets_an_answer_not_a_crash(case):
 def parse(text):
     import defusedxml.ElementTree as ET
     return ET.fromstring(text)
+
+
+LENGTHS = """\
+face field
+class post { fixed: 30 }
+class plank { tile: 20 }
+polygon field rect (0, 0) (80, 40)
+polyline (0, 40) (0, 70) class post
+polyline (0, 0) (80, 0) class plank
+"""
+
+
+def test_fixed_and_tile_lengths(tmp_path):
+    src = tmp_path / "fence.gg"
+    src.write_text(LENGTHS)
+    ex = load_example(src)
+    d = parse_drawing(drawing_from_example(ex).to_json())
+    assert check_drawing(ex, d) == []
+    p = xy(d)
+    by_cls = {e.cls: (k, e) for k, e in enumerate(d.edges)}
+
+    def stretched(cls, factor):
+        """Edge k of the class, its top (post) or right (plank) end moved outwards."""
+        k, e = by_cls[cls]
+        axis = 1 if cls == "post" else 0
+        base, tip = sorted((e.u, e.v), key=lambda v: p[v][axis])
+        return k, moved(d, tip, p[base] + (p[tip] - p[base]) * factor)
+
+    k, bad = stretched("post", 1.5)              # 45, not the fixed 30
+    hit = [f for f in check_drawing(ex, bad) if f.kind == "length" and f.edges == (k,)]
+    assert hit and "fixed length" in hit[0].message and hit[0].expected == "exactly 30"
+    # The plank is a whole multiple of 20 (80); 90 is not, 100 is.
+    k, bad = stretched("plank", 90 / 80)
+    hit = [f for f in check_drawing(ex, bad) if f.kind == "length" and f.edges == (k,)]
+    assert hit and "multiple" in hit[0].message
+    k, good = stretched("plank", 100 / 80)
+    assert not [f for f in check_drawing(ex, good) if f.kind == "length" and f.edges == (k,)]
