@@ -203,3 +203,30 @@ def test_stroke_widths_scale_with_the_unit():
     w = lambda text: float(next(p for p in parse(text).iter(f"{SVG}path")
                                 if p.get("data-class")).get("stroke-width"))
     assert w(render_svg(small, None)) == pytest.approx(w(render_svg(d, None)) / 100)
+
+
+def test_edge_and_vertex_images(tmp_path, decorated):
+    from grammar_lang.source import Decoration
+    for f in ("rope.svg", "lamp.svg"):
+        (tmp_path / f).write_text('<svg xmlns="http://www.w3.org/2000/svg"/>')
+    ex = decorated
+    corner = next(p for p in ex.primitives if len(p.ring) == 2)
+    ex = replace(ex, decorations=(
+        Decoration("edge", "path", (("image", str(tmp_path / "rope.svg")), ("spacing", 10.0))),
+        Decoration("vertex", corner.name, (("image", str(tmp_path / "lamp.svg")),
+                                           ("scale", 2.0), ("rotate", True)))))
+    d = drawing_from_example(ex)
+    out = tmp_path / "pic.svg"
+    write_svg(d, ex, out)
+    root = parse(out.read_text())
+    images = list(root.iter(f"{SVG}image"))
+    rope = [i for i in images if i.get(XLINK) == "rope.svg"]
+    lamps = [i for i in images if i.get(XLINK) == "lamp.svg"]
+    path_edges = [e for e in d.edges if e.cls == "path"]
+    pos = {v.id: np.array([v.x, v.y]) for v in d.vertices}
+    along = sum(int(np.linalg.norm(pos[e.v] - pos[e.u]) // 10) for e in path_edges)
+    assert len(rope) == along > 0
+    assert all(i.get("width") == "10" and "rotate(" in i.get("transform") for i in rope)
+    assert len(lamps) == corner.count
+    assert all(float(i.get("width")) == pytest.approx(2 * ex.unit) for i in lamps)
+    assert all(i.get("transform", "").startswith("rotate(") for i in lamps)
