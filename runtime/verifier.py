@@ -152,15 +152,13 @@ class _Index:
                       for bar in (False, True)]
         self.canon_arr = np.array(self.canon, dtype=np.int64)
         self.rank = np.empty(len(self.order), dtype=np.int64)
-        self.rank[sorted(range(len(self.order)), key=self.order.__getitem__)] = np.arange(len(self.order))
+        by_direction = sorted(range(len(self.order)), key=self.order.__getitem__)
+        self.rank[by_direction] = np.arange(len(self.order))
         self.rings: dict[bd.Tokens, int] = {}
         for k, p in enumerate(ref.primitives):
             self.rings.setdefault(self.canon_ring(p.ring), k)
         self.classes = {c.name: c for c in ref.classes}
         self.faces = set(ref.face_labels) | {ref.exterior}
-
-    def canon_token(self, token: int) -> int:
-        return self.canon[token]
 
     def canon_ring(self, ring) -> bd.Tokens:
         return tuple(sorted((self.canon[t] for t in ring), key=self.order.__getitem__))
