@@ -44,6 +44,11 @@ class Tables:
     exterior: str
     unit: float
 
+    @property
+    def one_face_label(self) -> bool:
+        """Every face has the same label, so no placement can put a face in the wrong place."""
+        return all(l == self.exterior and r == self.exterior for l, r in self.label_faces)
+
     @staticmethod
     def build(header: Header) -> "Tables":
         labels = header.labels
