@@ -26,6 +26,7 @@ WIDTH = 96   # wrap vertex and edge lists at this many columns
 # and names never compete, because the lexer only looks for what may come next.
 KEYWORDS = frozenset({"boundary", "wire"})
 _PLAIN = re.compile(r"[^\W\d]\w*")
+_KEY = re.compile(r"[^\W\d][\w-]*")    # a setting key (NAME in the grammar)
 
 
 def emit_ggr(grammar: Grammar) -> str:
@@ -93,7 +94,7 @@ def _header(h: Header, names: list[str]) -> list[str]:
         out.append("")
     for d in h.decorations:
         target = "*" if d.target == "*" else name(d.target)
-        props = "".join(f" {k}={_value(v)}" for k, v in d.props)
+        props = "".join(f" {k if _KEY.fullmatch(k) else quote(k)}={_value(v)}" for k, v in d.props)
         out.append(f"decorate {d.kind} {target}{props}")
     return out
 

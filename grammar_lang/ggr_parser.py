@@ -197,7 +197,7 @@ class _Builder:
         out: dict[str, object] = {}
         for node in nodes:
             key_tok = node.children[0]
-            key = str(key_tok)
+            key = self.name(key_tok)
             if key not in schema:
                 raise self.fail(f"unknown setting '{key}' for {what}", key_tok,
                                 did_you_mean(key, schema) or
@@ -207,6 +207,10 @@ class _Builder:
             value = node.children[1] if len(node.children) > 1 else None
             out[key] = self.convert(schema[key], key_tok, value)
         return out
+
+    def _key(self, nodes, key: str) -> Token:
+        """The key token of setting `key` among `nodes` (it is known to be there)."""
+        return next(n.children[0] for n in nodes if self.name(n.children[0]) == key)
 
     def convert(self, kind: str, key: Token, value: Tree | None) -> object:
         if value is None:
@@ -411,7 +415,7 @@ class _Builder:
         for key, value in list(opts.items()) + list(lims.items()):
             if value is not None and value < 0:
                 node = options if key in opts else limits
-                tok = next(s.children[0] for s in node.children if str(s.children[0]) == key)
+                tok = self._key(node.children, key)
                 self.fail(f"'{key}' cannot be negative", tok)
         return Options(**opts, limits=Limits(**lims))
 
@@ -420,7 +424,7 @@ class _Builder:
         s = self.settings(rest, _CLASS_KEYS, "an edge class")
         for key in ("min", "max", "fixed", "tile"):
             if s.get(key) is not None and s[key] <= 0:
-                key_tok = next(r.children[0] for r in rest if str(r.children[0]) == key)
+                key_tok = self._key(rest, key)
                 raise self.fail(f"'{key}' must be a positive length", key_tok)
         if s.get("min") is not None and s.get("max") is not None and s["min"] > s["max"]:
             raise self.fail("min is greater than max", tok)
@@ -435,7 +439,7 @@ class _Builder:
             if key not in s:
                 raise self.fail(f"edge label '{self.name(tok)}' has no {key}", tok,
                                 "write: label x angle=0 left=inside right=exterior class=0")
-        where = {str(r.children[0]): r.children[-1].children[0] for r in rest}
+        where = {self.name(r.children[0]): r.children[-1].children[0] for r in rest}
         angle = s["angle"]
         if not 0.0 <= angle < 180.0:
             raise self.fail(f"angle {angle:g} is outside [0, 180)", where["angle"],
@@ -505,7 +509,7 @@ class _Builder:
         props = []
         seen = set()
         for s in rest:
-            key = str(s.children[0])
+            key = self.name(s.children[0])
             if key in seen:
                 raise self.fail(f"'{key}' is given twice", s.children[0])
             seen.add(key)

@@ -79,7 +79,7 @@ def headers(draw) -> Header:
     decorations = []
     for _ in range(draw(st.integers(0, 3))):
         kind = draw(st.sampled_from(sorted(targets)))
-        keys = draw(unique(st.from_regex(r"[a-z][a-z_]{0,6}", fullmatch=True), 0, 3))
+        keys = draw(unique(st.from_regex(r"[a-z][a-z_-]{0,6}", fullmatch=True) | names, 0, 3))
         values = st.one_of(st.text(max_size=8), st.integers(-10**6, 10**6), st.booleans(),
                            st.floats(allow_nan=False, allow_infinity=False))
         decorations.append(Decoration(kind, draw(st.sampled_from(["*"] + list(targets[kind]))),

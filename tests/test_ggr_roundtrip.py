@@ -72,6 +72,19 @@ def test_corpus_headers_round_trip_with_random_rules(header, data):
     assert parse_ggr(emit_ggr(grammar)) == grammar
 
 
+@pytest.mark.parametrize("path", sorted((ROOT / "examples").glob("*.gg")), ids=lambda p: p.stem)
+def test_shipped_example_headers_round_trip(path):
+    """Headers as the .gg front end makes them: decorations, classes, options, faces."""
+    from grammar_lang.loader import load_example
+    from grammar_lang.rules import Header
+    ex = load_example(path)
+    header = Header(source=str(path.name), exterior=ex.exterior, face_labels=ex.face_labels,
+                    classes=ex.classes, labels=ex.labels, primitives=ex.primitives,
+                    options=ex.options, unit=ex.unit, decorations=ex.decorations)
+    grammar = Grammar(header, ())
+    assert parse_ggr(emit_ggr(grammar)) == grammar
+
+
 def doc_blocks():
     text = DOC.read_text(encoding="utf-8")
     return [(text[:m.start()].count("\n") + 2, m.group(1))
