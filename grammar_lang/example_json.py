@@ -1,6 +1,8 @@
 """Reading `gg-example/1` JSON (the corpus's plain format) as an example source.
 
-The corpus's edge classes give lengths in grid units of 40 px (the original editor's grid).
+Only the classes' rigidity is taken from the file: its length limits (0.1-4 "grid units") are
+broken by the corpus examples' own edges, so lengths keep the documented defaults, which are
+relative to the example and always admit it.
 """
 
 from __future__ import annotations
@@ -11,8 +13,6 @@ from pathlib import Path
 from .diagnostics import Span, error
 from .fileio import read_text
 from .source import EdgeClass, ExampleSource, ExplicitEdge
-
-GRID = 40.0
 
 
 def load_example_json(path: str | Path) -> ExampleSource:
@@ -30,13 +30,8 @@ def load_example_json(path: str | Path) -> ExampleSource:
         places = _edge_places(text, where, len(doc["edges"]))
         edges = [ExplicitEdge(pts[int(u)], pts[int(v)], str(l), str(r), str(c), span)
                  for (u, v, l, r, c), span in zip(doc["edges"], places)]
-        classes = {
-            str(name): EdgeClass(str(name),
-                                 float(spec.get("min_length", 0.1)) * GRID,
-                                 float(spec.get("max_length", 4.0)) * GRID,
-                                 rigid=bool(spec.get("rigid", False)))
-            for name, spec in doc.get("classes", {}).items()
-        }
+        classes = {str(name): EdgeClass(str(name), rigid=bool(spec.get("rigid", False)))
+                   for name, spec in doc.get("classes", {}).items()}
     except (KeyError, TypeError, ValueError, IndexError) as exc:
         raise error(f"malformed gg-example/1 file: {type(exc).__name__}: {exc}", Span(where),
                     'vertices are [x, y]; edges are [u, v, left, right, class]')

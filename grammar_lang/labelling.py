@@ -41,7 +41,11 @@ def label_example(source: ExampleSource, graph: ExampleGraph | None) -> Example:
     classes = _classes(source, graph)
     obs, edge_keys, n_vertices, lengths = _observations(source, graph)
     unit = source.options.unit or (float(np.median(lengths)) if lengths else 1.0)
-    resolved = tuple(classes[c].resolved(unit) for c in sorted(classes))
+    seen: dict[str, list[float]] = defaultdict(list)
+    for (_, _, _, cls, _), length in zip(edge_keys, lengths):
+        seen[cls].append(length)
+    resolved = tuple(classes[c].resolved(unit, (min(seen[c]), max(seen[c])) if seen[c] else None)
+                     for c in sorted(classes))
     rigid = {c.name for c in resolved if c.rigid}
 
     labels, edge_label, notes = _cluster(source, obs, edge_keys, faces, rigid, lengths)

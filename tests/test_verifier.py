@@ -20,9 +20,6 @@ from runtime.faces import compute_faces
 from runtime.verifier import as_reference, check_drawing
 
 NAMES = corpus_names()
-# The example's own longest edges exceed the default maximum length of their class
-# (4 × the median edge length): the defaults, not the verifier, need to change.
-OWN_LENGTHS_INVALID = {"triangle-complex"}
 
 
 @lru_cache(maxsize=None)
@@ -34,10 +31,6 @@ def example(name):
 def own_drawing(name) -> Drawing:
     # Through the JSON text, so the 6-decimal rounding of real files is part of every test.
     return parse_drawing(drawing_from_example(example(name)).to_json())
-
-
-def valid_names():
-    return [n for n in NAMES if n not in OWN_LENGTHS_INVALID]
 
 
 def kinds(failures):
@@ -83,10 +76,7 @@ def edge_length(d, e):
 @pytest.mark.parametrize("name", NAMES)
 def test_example_drawn_as_itself_passes(name):
     failures = check_drawing(example(name), own_drawing(name))
-    if name in OWN_LENGTHS_INVALID:
-        assert kinds(failures) == {"length"}, [f.render() for f in failures]
-    else:
-        assert failures == [], "\n".join(f.render() for f in failures)
+    assert failures == [], "\n".join(f.render() for f in failures)
 
 
 def test_header_is_accepted_like_the_example():
@@ -99,7 +89,7 @@ def test_header_is_accepted_like_the_example():
 
 
 def test_drawing_without_label_names_passes():
-    for name in valid_names():
+    for name in NAMES:
         d = own_drawing(name)
         bare = replace(d, edges=tuple(replace(e, label=None) for e in d.edges))
         assert check_drawing(example(name), bare) == [], name
@@ -271,7 +261,7 @@ def test_stretching_beyond_the_maximum_length(name):
     assert hit and "longer" in hit[0].message, [f.render() for f in failures]
 
 
-@pytest.mark.parametrize("name", valid_names())
+@pytest.mark.parametrize("name", NAMES)
 def test_stretching_a_dangling_edge_fails_only_there(name):
     d = own_drawing(name)
     deg = degree(d)
@@ -339,7 +329,7 @@ def test_nesting_a_copy_inside_a_face(name):
 
 def test_some_copies_nest_cleanly():
     clean = []
-    for name in valid_names():
+    for name in NAMES:
         d = own_drawing(name)
         holes = [poly for label, poly in inner_faces(d) if label == example(name).exterior]
         if holes:
@@ -393,14 +383,14 @@ finite = st.floats(min_value=-1e5, max_value=1e5, allow_nan=False, allow_infinit
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.sampled_from(valid_names()), finite, finite)
+@given(st.sampled_from(NAMES), finite, finite)
 def test_translation_keeps_a_pass(name, dx, dy):
     d = transformed(own_drawing(name), lambda q: q + np.array([dx, dy]))
     assert check_drawing(example(name), d) == []
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.sampled_from(valid_names()), st.floats(min_value=0.0, max_value=1.0))
+@given(st.sampled_from(NAMES), st.floats(min_value=0.0, max_value=1.0))
 def test_scaling_within_the_length_limits_keeps_a_pass(name, t):
     d = own_drawing(name)
     ref = as_reference(example(name))
@@ -417,7 +407,7 @@ def test_scaling_within_the_length_limits_keeps_a_pass(name, t):
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.sampled_from(valid_names()), st.randoms(use_true_random=False))
+@given(st.sampled_from(NAMES), st.randoms(use_true_random=False))
 def test_renumbering_and_reversing_edges_keeps_a_pass(name, rnd):
     d = own_drawing(name)
     ids = [v.id for v in d.vertices]
