@@ -36,6 +36,8 @@ from .matching import Match, Matcher, Piece
 from .occurrence import Host, Pattern, contains
 from .pruning import TurnAnalysis
 
+SELF_CHECK_PRIMITIVES = 5     # complete graphs this small are verified before claiming "complete"
+SELF_CHECK_GRAPHS = 1500
 Progress = Callable[[int, int, int], None]     # (generation, hierarchy graphs, rules)
 
 
@@ -315,8 +317,20 @@ class Inference:
 
     # --- result -----------------------------------------------------------------------------
 
+    def _self_check(self) -> None:
+        """A last guard on the claim "complete": the smallest complete graphs must reduce to ∅.
+        (The claim rests on every reduction making progress; a failure here means it did not,
+        and the report says so rather than claim too much.)"""
+        from .verify import verify
+        grammar = Grammar(header(self.ex, True), tuple(r.rule for r in self.state.rules))
+        res = verify(grammar, SELF_CHECK_PRIMITIVES, cap=SELF_CHECK_GRAPHS)
+        if res.failed:
+            self.state.limits_hit.add("self-check")
+
     def _result(self) -> CompileResult:
         st = self.state
+        if not st.limits_hit and not any(self.hier.nodes[i].status == KEPT for i in self.frontier):
+            self._self_check()
         front = {i for i in self.frontier if self.hier.nodes[i].status == KEPT}
         remaining = [n for n in self.hier.nodes
                      if n.status == OVER or (n.status == KEPT and n.id in front)]
