@@ -8,27 +8,17 @@ point's R end to that. R's bare edges (wires) join their two interface points st
 
 from __future__ import annotations
 
-from typing import Iterator
-
 from grammar_lang import boundary as bd
 from grammar_lang.graph import Side
 
 from .gluing import Graph, items_to_gaps
-from .occurrence import Host, Pattern, matches
+from .occurrence import Host
 
 
 def side_graph(side: Side) -> Graph:
     items = [it if isinstance(it, tuple) else (1 if it == bd.UP else -1) for it in side.boundary]
     return Graph(tuple(side.vertices), tuple(sorted(side.edges)),
                  items_to_gaps([it for it in items if not (isinstance(it, tuple) and it[0] < 0)]))
-
-
-def is_connected(side: Side) -> bool:
-    return len(side.components()) <= 1 and not (side.wires and side.vertices)
-
-
-def occurrences(lhs: Side, pat: Pattern, host: Host) -> Iterator[list[int]]:
-    yield from matches(pat, host)
 
 
 def apply(lhs: Side, rhs: Side, img: list[int], host: Host) -> None:

@@ -62,6 +62,9 @@ class Report:
     def verdict(self) -> str:
         if self.complete:
             return "complete: every locally similar graph can be built"
+        if self.limits_hit == ("self-check",):
+            return ("limited (self-check): the hierarchy closed, but a small complete graph "
+                    "does not reduce to ∅; run `ggc verify` to see which")
         return (f"limited ({', '.join(self.limits_hit) or 'search cut short'}): "
                 f"{self.remaining} irreducible graphs remain")
 
