@@ -805,7 +805,7 @@ class _Builder:
         span = Span(self.path, tok.line, tok.column, len(tok))
         vtok = Token("STRING" if vertex.startswith('"') else "NAME", vertex,
                      line=tok.line, column=tok.column)
-        if ref[0].isdigit():
+        if re.fullmatch(r"\d+", ref):
             itok = Token("INT", ref, line=tok.line, column=tok.column + m.start(3))
             return _Slot(vtok, self.integer(itok), span)
         ltok = Token("STRING" if ref.startswith('"') else "NAME", ref,

@@ -163,3 +163,12 @@ def test_compiled_corpus_grammars_validate_and_round_trip(stem, tmp_path):
     path = tmp_path / f"{stem}.ggr"
     write_ggr(path, grammar)
     assert load_ggr(path) == grammar
+
+
+def test_digit_like_names_are_names_not_slot_indices():
+    # '²' is a letter-like digit: a name (not \d), though str.isdigit() says otherwise.
+    text = ("ggr 1\nfaces a\nlabel ² angle=0 left=a right=a\nprimitive p = ²\nprimitive q = ~²\n"
+            "starter s {\n  lhs {\n    a: p  b: q\n    a.² -- b.0\n    boundary +\n  }\n}\n")
+    grammar = parse_ggr(text)
+    assert grammar.rules[0].lhs.edges == ((0, 0, 1, 0),)
+    assert parse_ggr(emit_ggr(grammar)) == grammar
