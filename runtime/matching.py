@@ -4,8 +4,10 @@ A vertex's primitive fixes its whole ring, so once one pattern vertex is mapped 
 of the same primitive, following the pattern's glued slots through the host's links maps every
 other vertex of that component, or fails, in time linear in the pattern (paper §6.1). Matching
 starts from the pattern's primitive with the fewest host instances and never scans the drawing:
-a random match tries candidates from a random offset of that primitive's index, and the
-components of a spliced side after the first are looked for near the first, through the grid.
+a random match tries candidates from a random offset of that primitive's index (or a few
+random anchors, for a cheap probe), and the further components and wires of a spliced side are
+looked for near the first, nearest first, through the grid. Whether spliced parts really share
+a face is left to the placement, whose crossing and face-label tests decide it exactly.
 """
 
 from __future__ import annotations
@@ -18,10 +20,9 @@ import numpy as np
 from grammar_lang.graph import Side, Slot
 
 from .host import Host
-from .spatial import segments_meet
 
 # How far (in units) the components of a spliced side may lie from each other.
-SPLICE_RADIUS = 2.5
+SPLICE_RADIUS = 2.0
 
 
 @dataclass(frozen=True)
@@ -37,11 +38,9 @@ class Pattern:
     side: Side
     components: tuple[Component, ...]
     open_slots: tuple[Slot, ...]                 # boundary order; wire ends are (-1 - e, end)
-    splices: tuple[tuple[Slot, Slot], ...]      # consecutive open slots of different components
     # A wire (bare edge) matches a host edge of its label: per wire, the (primitive, slot)
     # pairs where its end-0 partner, a barred half-edge, can sit.
     wire_slots: tuple[tuple[tuple[int, int], ...], ...] = ()
-    part_of: tuple[int, ...] = ()                # component index of each pattern vertex
 
     @staticmethod
     def build(side: Side, rings=()) -> "Pattern":
@@ -70,18 +69,10 @@ class Pattern:
                 plans.append(tuple(steps))
             comps.append(Component(tuple(verts), tuple(plans)))
         opens = tuple(side.open_slots())
-        comp_of = {v: k for k, c in enumerate(comps) for v in c.vertices}
-        splices = []
-        for v in range(-len(side.wires), 0):
-            comp_of[v] = ("wire", v)          # each wire is a component of its own
-        for a, b in zip(opens, opens[1:] + opens[:1]):
-            if comp_of[a[0]] != comp_of[b[0]]:
-                splices.append((a, b))
         wire_slots = tuple(
             tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
             for tok in side.wires)
-        part_of = tuple(comp_of[v] for v in range(len(side.vertices)))
-        return Pattern(side, tuple(comps), opens, tuple(splices), wire_slots, part_of)
+        return Pattern(side, tuple(comps), opens, wire_slots)
 
 
 def _ring_len(side: Side, u: int, partner: dict) -> int:
@@ -142,19 +133,6 @@ def _glue_ok(host: Host, pattern: Pattern, vmap: dict, spo: bool) -> bool:
     return True
 
 
-def _visible(host: Host, a: int, b: int) -> bool:
-    """No host edge crosses or touches the straight segment between vertices a and b."""
-    pa, pb = host.pos[a], host.pos[b]
-    link, pos = host.link, host.pos
-    for v, i in host.grid.segments_along(pa, pb):
-        w = link[v][i][0]
-        if a in (v, w) or b in (v, w):
-            continue
-        if segments_meet(pa, pb, pos[v], pos[w]):
-            return False
-    return True
-
-
 def _anchor(host: Host, pattern: Pattern, comp: Component) -> int:
     """Index into comp.vertices of the vertex whose primitive is rarest in the host."""
     counts = [len(host.by_prim[pattern.side.vertices[v]]) for v in comp.vertices]
@@ -189,24 +167,6 @@ RANDOM_BUDGET = 300
 PROBE_BUDGET = 40
 
 
-def _splices_ok(host: Host, pattern: Pattern, vmap: dict, wires: tuple, part: int) -> bool:
-    """Check the splices that became checkable once part `part` (components, then wires) is
-    matched: both their ends must see each other across the face."""
-    nc = len(pattern.components)
-    comp_of = pattern.part_of
-
-    def part_of(s: Slot) -> int:
-        return comp_of[s[0]] if s[0] >= 0 else nc + (-1 - s[0])
-
-    def at(s: Slot) -> int:
-        return vmap[s[0]] if s[0] >= 0 else wires[-1 - s[0]][s[1]][0]
-
-    for a, b in pattern.splices:
-        if max(part_of(a), part_of(b)) == part and not _visible(host, at(a), at(b)):
-            return False
-    return True
-
-
 def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
             rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, tuple]]:
     if ci == len(pattern.components):
@@ -219,11 +179,15 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
     n = len(cands)
     if n == 0:
         return
-    if rng is None:
+    if ci:
+        # Later parts of a splice: nearest first, since a splice joins parts facing each other
+        # across one face, and the nearest candidates are the likeliest to see the first part.
+        order = _nearest_first(host, cands, vmap)
+    elif rng is None:
         order = sorted(cands)
     else:
         start = int(rng.integers(n))
-        if ci == 0 and budget.probes is not None:
+        if budget.probes is not None:
             # A probe: random anchors only, so a failed try costs O(probes), not O(n).
             order = (cands[int(j)] for j in rng.integers(n, size=min(n, budget.probes)))
         else:
@@ -233,8 +197,7 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
         if ci and not budget.spend():
             return
         trial = dict(vmap)
-        if (_extend(host, pattern.side, comp.plans[k], anchor, h, trial)
-                and _splices_ok(host, pattern, trial, (), ci)):
+        if _extend(host, pattern.side, comp.plans[k], anchor, h, trial):
             yield from _search(host, pattern, ci + 1, trial, spo, rng, budget)
 
 
@@ -252,27 +215,38 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         # Beside parts already matched, look for the wire nearby only.
         near = set(_comp_candidates_any(host, placed))
         lists = [(i, [h for h in lst if h in near]) for i, lst in lists]
-    total = sum(len(l) for _, l in lists)
+    flat = [(h, i) for i, lst in lists for h in lst]
+    total = len(flat)
     if total == 0:
         return
-    start = 0 if rng is None else int(rng.integers(total))
-    part = len(pattern.components) + wi
-    for m in range(total):
-        k = (start + m) % total
-        for i, lst in lists:
-            if k < len(lst):
-                h = lst[k]
-                break
-            k -= len(lst)
+    if placed:
+        flat = [(h, i) for _, h, i in sorted(
+            (_d2(host, h, placed), h, i) for h, i in flat)]
+    elif rng is not None:
+        start = int(rng.integers(total))
+        flat = flat[start:] + flat[:start]
+    for h, i in flat:
         s1 = host.link[h][i]
         s0 = (h, i)
         if s1 is None or h in image or s1[0] in image or s0 in taken:
             continue
         if placed and not budget.spend():
             return
-        trial = wires + ((s0, s1),)
-        if _splices_ok(host, pattern, vmap, trial, part):
-            yield from _search_wires(host, pattern, wi + 1, vmap, trial, rng, budget)
+        yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng, budget)
+
+
+def _d2(host: Host, h: int, placed: dict) -> float:
+    cx = sum(host.pos[v][0] for v in placed.values()) / len(placed)
+    cy = sum(host.pos[v][1] for v in placed.values()) / len(placed)
+    p = host.pos[h]
+    return (p[0] - cx) ** 2 + (p[1] - cy) ** 2
+
+
+def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
+    cx = sum(host.pos[v][0] for v in placed.values()) / len(placed)
+    cy = sum(host.pos[v][1] for v in placed.values()) / len(placed)
+    pos = host.pos
+    return sorted(cands, key=lambda h: ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h))
 
 
 def _comp_candidates_any(host: Host, near: dict) -> list[int]:
