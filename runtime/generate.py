@@ -85,6 +85,11 @@ class Engine:
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}
 
+    def reseed(self, seed: int) -> None:
+        """Seed the random choices from here on; the drawing and history stay."""
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+
     # --- looking ----------------------------------------------------------------------------
     def stats(self, change: Change | None = None) -> Stats:
         h = self.host
@@ -136,7 +141,10 @@ class Engine:
             delta = self.cost.value(self.stats(change)) - self.cost.value(self.stats())
             if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
                 return Outcome(None, "cost")
-        solver = Solver(host, change, self.rng, self._center(change), self.I, self.J)
+        fixed = self._center(change)
+        # A free-standing new component may go anywhere: a fresh place for every sample.
+        center = (lambda: self._center(change)) if self._floating(change) else (lambda: fixed)
+        solver = Solver(host, change, self.rng, center, self.I, self.J)
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():
@@ -229,6 +237,9 @@ class Engine:
         return s
 
     # --- helpers ----------------------------------------------------------------------------
+    def _floating(self, change: Change) -> bool:
+        return not change.removed and all(b[0] not in self.host.prim for _, b in change.glue)
+
     def _center(self, change: Change) -> Point:
         """Where the change happens: the replaced part, else its context, else somewhere new."""
         host = self.host

@@ -6,7 +6,8 @@ over positions and lengths, the fixed vertices moving to b. Its solutions are xÌ
 
 A sample is drawn by projecting a random target onto that affine space: target lengths are drawn
 from the edge class's range (or kept, for edges that already exist) and target positions are
-the place the change happens (or kept, for old vertices); the projection is a weighted least
+the place the change happens (or kept, for old vertices; a new free-standing component gets a
+fresh place for every sample); the projection is a weighted least
 squares step, so old vertices move least and new ones most. Projecting a random point onto the
 space samples it as the null-space form does, without forming K. Samples whose lengths break
 their class (min/max, fixed, tile multiples, rigid), whose edges cross or touch others, or
@@ -20,7 +21,7 @@ tests, so a step's cost does not grow with the drawing.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterator
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -42,7 +43,7 @@ class Placement:
 
 class Solver:
     def __init__(self, host: Host, change: Change, rng: np.random.Generator,
-                 center: Point, I: int = I_ROUNDS, J: int = J_SAMPLES):
+                 center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES):
         self.host, self.change, self.rng = host, change, rng
         self.center, self.I, self.J = center, I, J
         self.new_prim = dict(change.new)
@@ -151,10 +152,11 @@ class Solver:
         nF = len(free)
         x = np.empty(2 * nF + len(edges))
         noise = rng.normal(0.0, 0.5 * u, size=2 * nF)
+        cx, cy = self.center()
         for k, v in enumerate(free):
             p = host.pos.get(v)
             if p is None:
-                x[2 * k], x[2 * k + 1] = self.center[0] + noise[2 * k], self.center[1] + noise[2 * k + 1]
+                x[2 * k], x[2 * k + 1] = cx + noise[2 * k], cy + noise[2 * k + 1]
             else:
                 x[2 * k], x[2 * k + 1] = p
         draws = rng.random(len(edges))
