@@ -458,3 +458,13 @@ def test_the_importing_files_decorations_and_border_come_last_and_first(tmp_path
     src = parse_file(main)
     assert [d.props for d in src.decorations] == [(("width", 1.0),), (("width", 3.0),)]
     assert src.classes["border"].border and src.paint[0].cls == "border"
+
+
+def test_windows_line_endings_tabs_and_bom(tmp_path):
+    gg = tmp_path / "w.gg"
+    gg.write_bytes("\ufeffface a #fff\r\n\tpolygon a (0,0) (1,0) (1,1)\r\n".encode("utf-8"))
+    assert parse_file(gg).paint[0].label == "a"
+    gg.write_bytes(b"face a\r\n\tpolgon a (0,0)\r\n")
+    d = _error_file(gg).diagnostics[0]
+    assert (d.span.line, d.span.column) == (2, 2)
+    assert d.excerpt().splitlines()[1].endswith(" ^^^^^^")
