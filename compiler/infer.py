@@ -278,6 +278,25 @@ class Inference:
             parts = components(len(g.verts), rest)
             if len(parts) == 2 and all(len(c) == self.block_size[g.verts[c[0]]] for c in parts):
                 self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
+        elif len(inter) == 2:
+            rest = tuple(e for e in g.edges if e not in inter)
+            parts = components(len(g.verts), rest)
+            if len(parts) != 3 or any(len(c) != self.block_size[g.verts[c[0]]] for c in parts):
+                return
+            ends1 = {(inter[0][0], inter[0][1]), (inter[0][2], inter[0][3])}
+            ends2 = {(inter[1][0], inter[1][1]), (inter[1][2], inter[1][3])}
+            for q, j1 in ends1:
+                for q2, j2 in ends2:
+                    if q2 != q:
+                        continue
+                    (a, ai), = ends1 - {(q, j1)}
+                    (c, ci), = ends2 - {(q, j2)}
+                    pa, pq, pc = g.verts[a], g.verts[q], g.verts[c]
+                    n = self.ring_len[pq]
+                    if j2 == (j1 + 1) % n:     # walk a → q (slot j1), on to j2, → c
+                        self.turns.forbid_pair((pa, ai, pq, j1), (pq, j2, pc, ci))
+                    if j1 == (j2 + 1) % n:     # walk c → q (slot j2), on to j1, → a
+                        self.turns.forbid_pair((pc, ci, pq, j2), (pq, j1, pa, ai))
 
     def _drop_holders(self, idx: int, lhs_id: int) -> None:
         """Irreducible graphs that hold the new left side are reducible now (with §5.4's
