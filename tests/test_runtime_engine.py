@@ -217,3 +217,29 @@ def test_hand_built_grammars_are_valid_rule_files(make):
     from grammar_lang.ggr_parser import parse_ggr
     g = make()
     assert parse_ggr(emit_ggr(g), "hand.ggr").rules == g.rules
+
+
+def _square(host, x0, y0, size):
+    """Add a filled square by hand: corners BL, BR, TR, TL (primitives 0-3) glued as RECT."""
+    ids = [host.new_id() for _ in range(4)]
+    pts = [(x0, y0), (x0 + size, y0), (x0 + size, y0 + size), (x0, y0 + size)]
+    for v, prim, p in zip(ids, range(4), pts):
+        host.add_vertex(v, prim, p)
+    for v, i, w, j in rg.RECT.edges:
+        host.glue((ids[v], i), (ids[w], j))
+    return ids
+
+
+def test_a_component_inside_a_face_of_another_label_is_refused():
+    from runtime.host import Host
+    g = rg.filled_square()
+    host = Host(g.header)
+    outer = _square(host, 0.0, 0.0, 10.0)
+    beside = _square(host, 20.0, 0.0, 1.0)
+    assert all(host.face_ok(v) for v in outer + beside)
+    inner = _square(host, 4.0, 4.0, 1.0)            # an exterior-bordered square in "in"
+    # A ray just above each corner, to the left: only the bottom-right corner's stays inside the
+    # small square; the others reach the big square's "in" where their rings say "exterior".
+    assert [host.face_ok(v) for v in inner] == [False, True, False, False]
+    assert all(host.face_ok(v) for v in outer + beside)
+    assert check_drawing(g, host.to_drawing()) != []   # the verifier agrees
