@@ -112,3 +112,12 @@ def test_no_loops_option_forbids_loop_gluing_and_splicing():
     assert all(n.graph.n_half > 0 for n in inf.hier.nodes)      # nothing ever closes
     for r in res.grammar.rules:
         assert len(r.rhs.components()) + len(r.rhs.wires) <= 1
+
+
+def test_connected_option_allows_no_spliced_right_sides():
+    from dataclasses import replace
+    ex = load_example(CORPUS / "star-hollow.svg")
+    res = compile_example(replace(ex, options=replace(ex.options, connected=True)))
+    assert res.grammar.header.options.connected
+    for r in res.grammar.rules:
+        assert len(r.rhs.components()) + len(r.rhs.wires) <= 1
