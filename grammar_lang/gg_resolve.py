@@ -1,6 +1,6 @@
 """From `.gg` statements (one file and its imports) to a checked `ExampleSource`.
 
-Two passes over the statements, with imports expanded in place (each module once):
+Two passes over the statements, with imports expanded in place by `gg_imports`:
 1. definitions: face labels, colours, classes, points, options, limits, SVG shapes;
 2. uses: geometry, primitives and decorations, checked against the definitions.
 So a name may be used before the line that defines it. A name defined twice in one file is an
@@ -10,41 +10,24 @@ error; a definition in an importing file overrides the imported one.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from importlib import resources
 from pathlib import Path
-from typing import Callable
 
 from . import gg_ast as A
 from . import gg_checks as C
 from . import gg_schema as S
 from .diagnostics import Span, did_you_mean, error
-from .fileio import read_text
+from .gg_imports import ParseSyntax, Unit, expand
 from .source import (DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
                      ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
 
-ParseSyntax = Callable[[str, str], tuple]
 BORDER_CLASS = "border"
-
-
-@dataclass
-class _Unit:
-    """One loaded file: its statements, where it is, and how deep in the import tree."""
-
-    path: str
-    text: str
-    stmts: tuple
-    depth: int
-
-    @property
-    def base(self) -> Path:
-        return Path(self.path).parent
 
 
 @dataclass
 class _Defs:
     """Definitions, each remembering (unit, span) of the statement that made it."""
 
-    origin: dict = field(default_factory=dict)   # (table, name) → (_Unit, Span)
+    origin: dict = field(default_factory=dict)   # (table, name) → (Unit, Span)
     name: str | None = None
     exterior: str = EXTERIOR
     faces: dict[str, Span | None] = field(default_factory=dict)
@@ -54,16 +37,7 @@ class _Defs:
     settings: dict[str, dict[str, object]] = field(
         default_factory=lambda: {"options": {}, "limits": {}})
     svg: dict[int, ExampleSource] = field(default_factory=dict)   # id(ShapeFrom) → source
-    renames: dict[str, tuple[str, A.Rename, "_Unit"]] = field(default_factory=dict)
-
-
-def stdlib_modules() -> list[str]:
-    """Names of the modules shipped in the `ggstdlib` package, sorted."""
-    try:
-        root = resources.files("ggstdlib")
-        return sorted(p.name[:-3] for p in root.iterdir() if p.name.endswith(".gg"))
-    except (ModuleNotFoundError, OSError):
-        return []
+    renames: dict[str, tuple[str, A.Rename, "Unit"]] = field(default_factory=dict)
 
 
 def resolve(text: str, path: Path, parse: ParseSyntax) -> ExampleSource:
@@ -73,66 +47,20 @@ def resolve(text: str, path: Path, parse: ParseSyntax) -> ExampleSource:
 class _Resolver:
     def __init__(self, parse: ParseSyntax):
         self.parse = parse
-        self.flat: list[tuple[object, _Unit]] = []
-        self.loaded: set[str] = set()
+        self.flat: list[tuple[object, Unit]] = []
         self.defs = _Defs()
         self.prim_spans: dict[str, Span] = {}
 
-    # ---- imports ------------------------------------------------------------------------------
-
     def run(self, text: str, path: Path) -> ExampleSource:
-        root = _Unit(str(path), text, self.parse(text, str(path)), 0)
-        self.loaded.add(_key(path))
-        self._flatten(root, [_key(path)])
+        root, self.flat = expand(text, path, self.parse)
         for stmt, unit in self.flat:
             self._define(stmt, unit)
         self._adopt_drawings()
         return self._build(root)
 
-    def _flatten(self, unit: _Unit, stack: list[str]) -> None:
-        for stmt in unit.stmts:
-            if not isinstance(stmt, A.Import):
-                self.flat.append((stmt, unit))
-                continue
-            path, text = self._find_module(stmt, unit)
-            key = _key(path)
-            if key in stack:
-                chain = " → ".join(Path(k).name for k in stack[stack.index(key):] + [key])
-                raise error(f"import cycle: {chain}", stmt.span,
-                            "a module must not import itself, directly or through others",
-                            source=unit.text)
-            if key in self.loaded:
-                continue
-            self.loaded.add(key)
-            child = _Unit(str(path), text, self.parse(text, str(path)), unit.depth + 1)
-            self._flatten(child, stack + [key])
-
-    def _find_module(self, stmt: A.Import, unit: _Unit) -> tuple[Path, str]:
-        name = stmt.target
-        explicit = name.startswith((".", "/")) or name.endswith(".gg") or "/" in name
-        candidates: list[Path] = []
-        if not explicit and name:
-            try:
-                lib = resources.files("ggstdlib") / f"{name}.gg"
-                if lib.is_file():
-                    return Path(str(lib)), lib.read_text(encoding="utf-8")
-            except (ModuleNotFoundError, OSError, ValueError):
-                pass
-        if name:
-            local = unit.base / name
-            candidates = [local] if local.suffix == ".gg" else [local.with_name(local.name + ".gg"),
-                                                                  local]
-        for cand in candidates:
-            if cand.is_file():
-                return cand, read_text(cand)
-        hint = did_you_mean(name, stdlib_modules()) or (
-            "standard modules: " + ", ".join(stdlib_modules()) +
-            "; a file beside this one is imported as \"./name\"")
-        raise error(f"no module named '{name}'", stmt.span, hint, source=unit.text)
-
     # ---- pass 1: definitions ------------------------------------------------------------------
 
-    def _claim(self, table: str, name: str, span: Span, unit: _Unit, what: str) -> bool:
+    def _claim(self, table: str, name: str, span: Span, unit: Unit, what: str) -> bool:
         """Whether this definition takes effect; a repeat in the same file is an error."""
         old = self.defs.origin.get((table, name))
         if old is not None:
@@ -146,7 +74,7 @@ class _Resolver:
         self.defs.origin[(table, name)] = (unit, span)
         return True
 
-    def _define(self, stmt, unit: _Unit) -> None:
+    def _define(self, stmt, unit: Unit) -> None:
         d = self.defs
         if isinstance(stmt, A.ExampleName):
             if not stmt.name.strip():
@@ -189,7 +117,7 @@ class _Resolver:
             if self._claim("rename", old, stmt.span, unit, "the renaming of"):
                 d.renames[old] = (new, stmt, unit)
 
-    def _load_svg(self, stmt: A.ShapeFrom, unit: _Unit) -> ExampleSource:
+    def _load_svg(self, stmt: A.ShapeFrom, unit: Unit) -> ExampleSource:
         path = unit.base / stmt.path
         if path.suffix.lower() != ".svg":
             raise error(f"'{stmt.path}' is not an SVG file", stmt.span,
@@ -222,7 +150,7 @@ class _Resolver:
 
     # ---- pass 2: uses -------------------------------------------------------------------------
 
-    def _build(self, root: _Unit) -> ExampleSource:
+    def _build(self, root: Unit) -> ExampleSource:
         d = self.defs
         classes = {name: self._edge_class(c, self._unit_of("class", name))
                    for name, c in d.classes.items()}
@@ -273,7 +201,7 @@ class _Resolver:
             # imports' wherever its `import` lines are (a stable sort keeps file order).
             decorations=[deco for unit, deco in sorted(decos, key=lambda t: -t[0].depth)])
 
-    def _unit_of(self, table: str, name: str) -> _Unit:
+    def _unit_of(self, table: str, name: str) -> Unit:
         return self.defs.origin[(table, name)][0]
 
     def _options(self) -> Options:
@@ -293,7 +221,7 @@ class _Resolver:
 
     # ---- names --------------------------------------------------------------------------------
 
-    def _label(self, word: A.Word, unit: _Unit) -> str:
+    def _label(self, word: A.Word, unit: Unit) -> str:
         label = _label_text(word, unit)
         if label == self.defs.exterior or label in self.defs.faces:
             return label
@@ -303,7 +231,7 @@ class _Resolver:
                     f"declare it first with `face {word.text}` (known: {', '.join(known)})",
                     source=unit.text)
 
-    def _cls(self, word: A.Word | None, unit: _Unit) -> str:
+    def _cls(self, word: A.Word | None, unit: Unit) -> str:
         if word is None:
             return DEFAULT_CLASS
         name = _label_text(word, unit)
@@ -314,7 +242,7 @@ class _Resolver:
                     f"define it with `class {word.text} {{ … }}`; the default class is "
                     f"'{DEFAULT_CLASS}'", source=unit.text)
 
-    def _point(self, pt: A.Pt, unit: _Unit) -> tuple[float, float]:
+    def _point(self, pt: A.Pt, unit: Unit) -> tuple[float, float]:
         if isinstance(pt, A.Ref):
             if pt.name in self.defs.points:
                 return self.defs.points[pt.name]
@@ -330,7 +258,7 @@ class _Resolver:
 
     # ---- geometry -----------------------------------------------------------------------------
 
-    def _ring(self, ring: A.Ring, unit: _Unit, closed: bool, what: str) -> tuple:
+    def _ring(self, ring: A.Ring, unit: Unit, closed: bool, what: str) -> tuple:
         pts = [self._point(p, unit) for p in ring.points]
         if ring.rect:
             (x0, y0), (x1, y1) = pts
@@ -353,7 +281,7 @@ class _Resolver:
                         source=unit.text)
         return tuple(pts)
 
-    def _polygon(self, stmt: A.Polygon, unit: _Unit) -> list:
+    def _polygon(self, stmt: A.Polygon, unit: Unit) -> list:
         label = self._label(stmt.label, unit)
         rings = (self._ring(stmt.outer, unit, True, "a polygon"),
                  *(self._ring(h, unit, True, "a hole") for h in stmt.holes))
@@ -363,7 +291,7 @@ class _Resolver:
             out.extend(Stroke(r, True, cls, span=stmt.span) for r in rings)
         return out
 
-    def _polyline(self, stmt: A.Polyline, unit: _Unit, classes: dict) -> Stroke:
+    def _polyline(self, stmt: A.Polyline, unit: Unit, classes: dict) -> Stroke:
         what = "a border" if stmt.border else ("a loop" if stmt.closed else "a polyline")
         pts = self._ring(stmt.ring, unit, stmt.closed, what)
         if stmt.border:
@@ -377,7 +305,7 @@ class _Resolver:
             cls = self._cls(stmt.cls, unit)
         return Stroke(pts, stmt.closed, cls, span=stmt.span)
 
-    def _edges(self, stmt: A.Edge, unit: _Unit) -> list:
+    def _edges(self, stmt: A.Edge, unit: Unit) -> list:
         sides = {"left": None, "right": None, "class": None}
         for s in stmt.sides:
             if sides[s.kind] is not None:
@@ -399,13 +327,13 @@ class _Resolver:
 
     # ---- classes, primitives, decorations -----------------------------------------------------
 
-    def _edge_class(self, c: A.ClassDef, unit: _Unit) -> EdgeClass:
+    def _edge_class(self, c: A.ClassDef, unit: Unit) -> EdgeClass:
         values = S.check_block(c.props, S.CLASS, "class", self.defs.palette, unit.base,
                                unit.text)
         return C.edge_class(_label_text(c.name, unit), values, {p.key: p.span for p in c.props},
                             c.span, unit.text)
 
-    def _primitive(self, stmt: A.PrimitiveDef, unit: _Unit) -> PrimitiveSpec:
+    def _primitive(self, stmt: A.PrimitiveDef, unit: Unit) -> PrimitiveSpec:
         if not stmt.half_edges:
             raise error("a primitive needs at least one half-edge", stmt.span,
                         "list its half-edges by direction, e.g. primitive { 0  180 }",
@@ -436,7 +364,7 @@ class _Resolver:
         C.vertex_ring([(h, node.span) for h, node in halves], unit.text)
         return PrimitiveSpec(tuple(h for h, _ in halves), stmt.name, span=stmt.span)
 
-    def _face_decoration(self, stmt: A.Face, unit: _Unit) -> Decoration:
+    def _face_decoration(self, stmt: A.Face, unit: Unit) -> Decoration:
         props = dict(S.check_block(stmt.props, S.DECORATIONS["face"], "face", self.defs.palette,
                                    unit.base, unit.text))
         if stmt.colour is not None:
@@ -448,7 +376,7 @@ class _Resolver:
         return Decoration("face", _label_text(stmt.label, unit), tuple(props.items()),
                           span=stmt.span)
 
-    def _decoration(self, stmt: A.Decorate, unit: _Unit) -> Decoration:
+    def _decoration(self, stmt: A.Decorate, unit: Unit) -> Decoration:
         kind = stmt.kind.text
         if kind not in S.DECORATIONS:
             raise error(f"cannot decorate '{kind}'", stmt.kind.span,
@@ -497,7 +425,7 @@ def _renamed(svg: ExampleSource, mapping: dict[str, str]) -> ExampleSource:
                    decorations=[replace(x, target=f(x.target)) for x in svg.decorations])
 
 
-def _label_text(word: A.Word, unit: _Unit) -> str:
+def _label_text(word: A.Word, unit: Unit) -> str:
     """Face labels and class names written as colours take the SVG importer's form (lowercase
     #rrggbb), so that they match the labels and classes of an imported drawing."""
     if word.kind == "colour" or (word.kind == "string" and S.is_hex_colour(word.text)):
@@ -506,13 +434,6 @@ def _label_text(word: A.Word, unit: _Unit) -> str:
         raise error("'*' is not a face label", word.span,
                     "'*' means \"all\" only as the target of a decoration", source=unit.text)
     return word.text
-
-
-def _key(path) -> str:
-    try:
-        return str(Path(str(path)).resolve())
-    except OSError:
-        return str(path)
 
 
 def _fmt(p) -> str:

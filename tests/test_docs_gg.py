@@ -9,7 +9,7 @@ import pytest
 from conftest import ROOT
 from grammar_lang import gg_schema
 from grammar_lang.gg_parser import STATEMENT_KEYWORDS, parse_syntax, parse_text
-from grammar_lang.gg_resolve import stdlib_modules
+from grammar_lang.gg_imports import stdlib_modules
 from grammar_lang.labelling import label_example
 from grammar_lang.planar import build_planar_graph
 

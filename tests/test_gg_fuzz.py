@@ -27,7 +27,7 @@ VOCAB = [*STATEMENT_KEYWORDS, "hole", "rect", "left", "right", "from", "(", ")",
          "}", ",", ";", ":", "->", "*", "\n", "//", "/*", "*/", '"', "'", "\\", "#", "#c0f0ff",
          "#ggg", "0", "-1.5e3", "1e999", "10deg", "5s", "80%", "°", "wall", "exterior", "inside",
          '"cottage.svg"', '"pastel"', '"ground"', '"./x"', "\t", "\x0c", "\u2028", "\x00", "é",
-         "min:", "max: -1", "rigid", "border", "fill: red", "(0, 0)", "(1e308, -1e308)"]
+         "min:", "max: -1", '"/"', '""', '".."', "rename", "a -> b", "rigid", "border", "fill: red", "(0, 0)", "(1e308, -1e308)"]
 FUZZ = settings(max_examples=200, deadline=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 

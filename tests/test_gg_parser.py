@@ -12,7 +12,7 @@ from conftest import ROOT, corpus_names
 from grammar_lang import gg_schema
 from grammar_lang.diagnostics import Span, UserError
 from grammar_lang.gg_parser import decode_string, parse_file, parse_syntax, parse_text
-from grammar_lang.gg_resolve import stdlib_modules
+from grammar_lang.gg_imports import stdlib_modules
 from grammar_lang.labelling import label_example
 from grammar_lang.loader import load_example
 from grammar_lang.planar import build_planar_graph
@@ -385,6 +385,8 @@ ERRORS = [
     ("polygon exterior rect (0, 0) (0, 5)", "different x and y", 1, 18, "rect"),
     ("loop (0,0) (1e999,0) (1,1)", "too large", 1, 13, None),
     ('import "pastle"\n' + SQUARE, "no module named 'pastle'", 1, 1, "'pastel'"),
+    ('import "/"\n' + SQUARE, "no module named '/'", 1, 1, "standard modules"),
+    ('import ""\n' + SQUARE, "no module named ''", 1, 1, "standard modules"),
     ('shape from "missing.svg"', "SVG file not found", 1, 1, "relative"),
     ('shape from "x.png"', "not an SVG file", 1, 1, ".svg"),
     ("primitive { 0 left a }", "unknown face label 'a'", 1, 20, "face a"),
