@@ -211,7 +211,9 @@ class Engine:
         while s.applied < steps:
             out = self.step()
             if out.reason == "terminal":
-                s.stop = "no rule applies (the drawing is terminal)"
+                s.stop = ("no rule applies to the empty drawing: the grammar has no starter "
+                          "rule that creates a component" if len(self.host) == 0 else
+                          "no rule applies (the drawing is terminal)")
                 break
             s.proposals += 1
             if out.applied is not None:
