@@ -39,6 +39,7 @@ class Level:
     moves: tuple[DirectedRule, ...]
     weights: tuple[float, ...]
     limit: int | None = None
+    requires: np.ndarray | None = None     # move × primitive: the pattern uses that primitive
 
 
 @dataclass(frozen=True)
@@ -62,9 +63,14 @@ class Schedule:
                 by_level.setdefault(rule.priority, []).append(
                     (DirectedRule.build(rule, fwd, rings), float(rule.weight)))
         limits = limits or {}
-        levels = tuple(Level(p, tuple(m for m, _ in by_level[p]),
-                             tuple(w for _, w in by_level[p]), limits.get(p))
-                       for p in sorted(by_level))
+        levels = []
+        for p in sorted(by_level):
+            moves = tuple(m for m, _ in by_level[p])
+            req = np.zeros((len(moves), len(rings)), dtype=bool)
+            for k, m in enumerate(moves):
+                req[k, list(m.pattern.side.vertices)] = True
+            levels.append(Level(p, moves, tuple(w for _, w in by_level[p]), limits.get(p), req))
+        levels = tuple(levels)
         return Schedule(levels, spo)
 
     def moves(self) -> list[DirectedRule]:
@@ -85,14 +91,18 @@ class Schedule:
         return None
 
     def _draw(self, level: Level, host: Host, rng: np.random.Generator, probes: int | None):
-        w = np.array(level.weights, dtype=float)
-        while True:
-            total = float(w.sum())
-            if total <= 0:
-                return None
-            k = int(np.searchsorted(np.cumsum(w), rng.random() * total, side="right"))
-            k = min(k, len(w) - 1)
+        # Weighted sampling without replacement in one go: sorting by u^(1/w) draws the same
+        # order as repeated weighted draws (Efraimidis & Spirakis). Moves needing a primitive
+        # the host does not have are skipped without a search.
+        w = np.asarray(level.weights, dtype=float)
+        keys = rng.random(len(w)) ** (1.0 / w)
+        absent = np.array([not lst for lst in host.by_prim], dtype=bool)
+        if absent.any():
+            keys[level.requires[:, absent].any(axis=1)] = -1.0
+        for k in np.argsort(-keys, kind="stable"):
+            if keys[k] < 0:
+                break
             match = find_match(host, level.moves[k].pattern, rng, self.spo, probes)
             if match is not None:
                 return level.moves[k], match
-            w[k] = 0.0
+        return None
