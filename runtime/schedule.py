@@ -4,10 +4,11 @@ Each step looks at the priority levels in ascending order (a lower value runs fi
 the first level that (a) has not reached its own step limit and (b) has a rule with a match.
 Within that level a move (a rule in one direction) is drawn with probability proportional to
 its weight; if it has no match it is set aside for this step and another is drawn, so a level
-is passed over only when none of its moves applies. To keep a step's cost independent of the
-drawing's size, the draw is made twice: first each move is tried at a few random anchors only,
-and only when all moves fail that way are they searched exhaustively. A level that has been passed over is looked
-at again on the next step, since later rewrites can make it applicable again. Generation ends
+is passed over only when none of its moves applies (moves needing a primitive the drawing
+lacks are skipped at once). To keep a step's cost independent of the drawing's size, the draw
+is made twice: first each move is tried at a few random anchors only, and only when all moves
+fail that way are they searched exhaustively. A level that has been passed over is looked at
+again on the next step, since later rewrites can make it applicable again. Generation ends
 when the global limit of applied steps is reached or no level applies (a terminal drawing).
 
 Merrell's grammars use every rule in both directions with no preference (paper §6.1): each
