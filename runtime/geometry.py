@@ -12,7 +12,8 @@ squares step, so old vertices move least and new ones most. Projecting a random 
 space samples it as the null-space form does, without forming K. Samples whose lengths break
 their class (min/max, fixed, tile multiples, rigid), whose edges cross or touch others, or
 whose vertices coincide are rejected: J samples per system. When the system is inconsistent
-(over-constrained) or J samples fail, one more vertex next to a free one is freed: I rounds.
+(over-constrained), fixes some length outside its class whatever the sample, or J samples
+fail, one more vertex next to a free one is freed: I rounds.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
@@ -77,6 +78,8 @@ class Solver:
             system = self._system(free)
             if system is None:
                 self._fail("over-constrained")
+            elif system[0] is None:
+                self._fail(system[1])
             else:
                 for _ in range(self.J):
                     pos = self._sample(free, *system)
@@ -144,6 +147,17 @@ class Solver:
         res = b - M @ (Mp @ b)
         if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
             return None
+        # Lengths the system fixes whatever the target (their row of x = R t + c is constant):
+        # one outside its class's range dooms every sample, so the round is skipped.
+        nF2 = 2 * nF
+        R = np.eye(A.shape[1])[nF2:] - (scale[nF2:, None] * (Mp[nF2:] @ A))
+        c = scale[nF2:] * (Mp[nF2:] @ b)
+        fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
+        tol = 1e-7 * t.unit
+        for e in np.flatnonzero(fixed_rows):
+            lo, hi, _, _ = t.lengths[edges[e][5]]
+            if not (c[e] > tol and lo - tol <= c[e] <= hi + tol):
+                return None, "length fixed out of range"
         return edges, A, b, scale, Mp
 
     def _targets(self, free, edges) -> np.ndarray:
