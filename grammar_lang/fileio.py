@@ -41,6 +41,13 @@ def atomic_write(path: str | Path, text: str) -> None:
     except OSError as exc:
         raise error(f"cannot write {p}: {exc.strerror or exc}", Span(str(p)))
     try:
+        # mkstemp makes the file private (0600); a user's output should get the usual mode,
+        # or keep the mode of the file it replaces.
+        try:
+            mode = p.stat().st_mode & 0o777
+        except OSError:
+            mode = 0o666 & ~_umask()
+        os.chmod(tmp, mode)
         with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
             fh.flush()
@@ -52,3 +59,9 @@ def atomic_write(path: str | Path, text: str) -> None:
         except OSError:
             pass
         raise error(f"cannot write {p}: {exc.strerror or exc}", Span(str(p)))
+
+
+def _umask() -> int:
+    current = os.umask(0)
+    os.umask(current)
+    return current
