@@ -30,17 +30,34 @@ def workdir(tmp_path_factory):
 
 
 CLI_COMMANDS = commands(ROOT / "docs" / "cli.md")
+README_COMMANDS = commands(ROOT / "README.md")
 
 
-def test_the_cli_doc_has_commands():
-    assert len(CLI_COMMANDS) >= 8
-
-
-@pytest.mark.parametrize("command", CLI_COMMANDS)
-def test_cli_doc_command_runs(command, workdir):
-    argv = shlex.split(command)
+def run(command: str, cwd: Path) -> subprocess.CompletedProcess:
+    argv = shlex.split(command, comments=True)
     assert argv[0] in ("ggc", "ggrun")
     env = dict(os.environ, PATH=f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}")
-    res = subprocess.run(argv, cwd=workdir, env=env, capture_output=True, text=True, timeout=300)
+    return subprocess.run(argv, cwd=cwd, env=env, capture_output=True, text=True, timeout=300,
+                          stdin=subprocess.DEVNULL)
+
+
+def test_the_docs_have_commands():
+    assert len(CLI_COMMANDS) >= 8 and len(README_COMMANDS) >= 6
+
+
+@pytest.mark.parametrize("command", CLI_COMMANDS + README_COMMANDS)
+def test_documented_command_runs(command, workdir):
+    res = run(command, workdir)
     assert res.returncode == 0, res.stderr
     assert "Traceback" not in res.stderr
+
+
+def test_readme_main_command_draws(workdir):
+    text = (ROOT / "README.md").read_text()
+    main = re.search(r"```sh\n(python3 -m venv .*)\n```", text).group(1)
+    command = main.split("&&")[-1].strip()
+    assert command.startswith("ggrun examples/")
+    res = run(command, workdir)
+    assert res.returncode == 0, res.stderr
+    out = workdir / shlex.split(command)[-1]
+    assert out.read_text().startswith("<svg") or "<svg" in out.read_text()[:200]
