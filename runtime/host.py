@@ -24,6 +24,9 @@ from .spatial import Grid
 
 Slot = tuple[int, int]
 Point = tuple[float, float]
+# Heights closer than this (times the unit) count as level in the face test: positions come from
+# least squares, so vertices joined by a horizontal edge can differ by rounding noise (~1e-15).
+LEVEL_TOL = 1e-7
 
 
 @dataclass(frozen=True)
@@ -59,8 +62,7 @@ class Tables:
             d, l, r, lb = [], [], [], []
             for t in prim.ring:
                 lab = labels[t >> 1]
-                ang = math.radians(lab.direction(bool(t & 1)))
-                d.append((math.cos(ang), math.sin(ang)))
+                d.append(unit_vector(lab.direction(bool(t & 1))))
                 bar = bool(t & 1)
                 l.append(lab.right if bar else lab.left)
                 r.append(lab.left if bar else lab.right)
@@ -81,6 +83,16 @@ class Tables:
                       tuple(outer), tuple(lengths), tuple(l.name for l in labels),
                       tuple(l.cls for l in labels), tuple((l.left, l.right) for l in labels),
                       header.exterior, unit)
+
+
+def unit_vector(degrees: float) -> Point:
+    """The direction as a unit vector, exact at multiples of 90° (where sin(pi) would leave
+    1e-16 and put the ends of a horizontal edge at different heights)."""
+    q, r = divmod(degrees, 90.0)
+    if r == 0.0:
+        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(q) % 4]
+    ang = math.radians(degrees)
+    return (math.cos(ang), math.sin(ang))
 
 
 class Host:
@@ -257,7 +269,7 @@ class Host:
         want = self.t.outer[self.prim[v]]
         if want is None:
             return True
-        hit = self.grid.ray_left(self.pos[v])
+        hit = self.grid.ray_left(self.pos[v], tol=LEVEL_TOL * self.t.unit)
         if hit is None:
             return want == self.t.exterior
         (a, i) = hit[0]

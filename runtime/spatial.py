@@ -124,40 +124,54 @@ class Grid:
     def min_column(self) -> int | None:
         return min(self._cols) if self._cols else None
 
-    def ray_left(self, p: Point, skip=()) -> tuple[Hashable, float] | None:
+    def ray_left(self, p: Point, skip=(), tol: float = 0.0) -> tuple[Hashable, float] | None:
         """The first segment hit by the ray from `p` towards -x, at height p.y + 0⁺.
 
-        A segment counts when its ends straddle that height (one end strictly above p.y), which
-        makes the ray miss the segments that merely end at p. Returns (id, x of the hit).
+        Heights within `tol` of p.y count as equal to it, so that two vertices meant to be level
+        (the ends of a horizontal edge, say) are treated as level despite rounding noise. A
+        segment counts when one end is at or below the ray's height and the other strictly
+        above it (above p.y + tol), which makes the ray miss segments that merely end at p or
+        that leave a level vertex downwards. Segments leaving one level vertex upwards all
+        meet the ray at that vertex; the one leaning furthest right is hit first, as it would
+        be just above p.y. Returns (id, x of the hit).
         """
         px, py = p
         c = self.cell
         col0 = math.floor(px / c)
-        row = math.floor(py / c)
+        top = py + tol
+        rows = sorted({math.floor((py - tol) / c), math.floor(top / c)})
         lo = self.min_column()
         if lo is None:
             return None
-        best: tuple[float, Hashable] | None = None
+        best: tuple[float, float, Hashable] | None = None
         seen: set = set()
         col = col0
         # Every segment ends at points, so nothing lies left of the leftmost point column.
         while col >= lo:
-            cell = self._seg_cells.get((col, row))
-            if cell:
+            for row in rows:
+                cell = self._seg_cells.get((col, row))
+                if not cell:
+                    continue
                 for sid in cell:
                     if sid in seen or sid in skip:
                         continue
                     seen.add(sid)
                     (ax, ay), (bx, by) = self._segs[sid]
-                    if (ay > py) == (by > py):
+                    if (ay > top) == (by > top):
                         continue
-                    x = ax + (py - ay) * (bx - ax) / (by - ay)
-                    if x < px and (best is None or x > best[0] or (x == best[0] and sid < best[1])):
-                        best = (x, sid)
+                    if ay > by:
+                        ax, ay, bx, by = bx, by, ax, ay
+                    lean = (bx - ax) / (by - ay)     # x gained per unit of height
+                    x = ax if ay >= py - tol else ax + (py - ay) * lean
+                    if x >= px:
+                        continue
+                    key = (x, lean)
+                    if best is None or key > best[:2] or (key == best[:2] and sid < best[2]):
+                        best = (x, lean, sid)
             if best is not None and best[0] >= col * c:
                 break
             col -= 1
-        return None if best is None else (best[1], best[0])
+        return None if best is None else (best[2], best[0])
 
 
 def segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool:
