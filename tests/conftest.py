@@ -9,7 +9,11 @@ CORPUS = Path(os.environ.get("GG_CORPUS", ROOT.parent / "shared" / "corpus" / "e
 
 
 def corpus_names() -> list[str]:
-    return sorted(p.stem for p in CORPUS.glob("*.svg"))
+    names = sorted(p.stem for p in CORPUS.glob("*.svg"))
+    if not names:
+        # Never let a missing corpus turn corpus tests into zero silent parametrizations.
+        raise RuntimeError(f"corpus not found at {CORPUS}; set GG_CORPUS to its examples folder")
+    return names
 
 
 @pytest.fixture(scope="session")
