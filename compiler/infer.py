@@ -176,12 +176,12 @@ class Inference:
         node, new = self.hier.lookup_or_add(g, gen, parent)
         if not new:
             return
-        if g.n_half > self.limits.half_edges:
-            node.status = OVER
-            self.state.limits_hit.add("half-edges")
-            return
+        # A graph that holds a rule's left side is reducible whatever its size.
         if self._holds_left_side(g, anchors):
             node.status = REDUCIBLE
+            return
+        if g.n_half > self.limits.half_edges:
+            node.status = OVER
             return
         if g.is_complete:
             self._add_rule(node, None)
@@ -299,10 +299,10 @@ class Inference:
                         self.turns.forbid_pair((pc, ci, pq, j2), (pq, j1, pa, ai))
 
     def _drop_holders(self, idx: int, lhs_id: int) -> None:
-        """Irreducible graphs that hold the new left side are reducible now (with §5.4's
-        exception for graphs that hold one of the rule's own right-side graphs)."""
-        for other in self.hier.kept():
-            if other.id == lhs_id:
+        """Irreducible and over-limit graphs that hold the new left side are reducible now
+        (with §5.4's exception for graphs that hold one of the rule's own right-side graphs)."""
+        for other in self.hier.nodes:
+            if other.id == lhs_id or other.status not in (KEPT, OVER):
                 continue
             g = other.graph
             if self._holds_left_side(g, None, [idx]):
@@ -351,6 +351,8 @@ class Inference:
 
     def _result(self) -> CompileResult:
         st = self.state
+        if self.hier.count(OVER):
+            st.limits_hit.add("half-edges")
         if not st.limits_hit and not any(self.hier.nodes[i].status == KEPT for i in self.frontier):
             self._self_check()
         front = {i for i in self.frontier if self.hier.nodes[i].status == KEPT}

@@ -123,19 +123,24 @@ class Matcher:
                 return prefix[b] - prefix[a]
             return total - prefix[a] + prefix[b]
 
+        # Some piece holds target[0]; any piece of a splice may be taken as the outer one
+        # (each closing gap, 1 − inner turns, is exactly the target's turns around the rest),
+        # so only placements covering position 0 need trying.
+        first = target[0][0]
         for piece in self._candidates(target, min(max_half, m)):
-            r = piece.toks
-            p = len(r)
-            for k0 in range(m):
-                if target[k0][0] != r[0][0]:
+            p = len(piece.toks)
+            for j0 in range(p):
+                if piece.toks[j0][0] != first:
                     continue
-                for pos in _placements(r, target, k0, turns):
+                r = piece.toks[j0:] + piece.toks[:j0]
+                for pos in _placements(r, target, 0, turns):
                     self._steps += 1
                     if self._steps > self.budget:
                         raise _OutOfBudget
                     rest = self._fill(target, pos, p)
                     if rest is not None:
-                        return ((piece, pos),) + rest
+                        own = tuple(pos[(q - j0) % p] for q in range(p))
+                        return ((piece, own),) + rest
         return None
 
     def _fill(self, target: Toks, pos: tuple[int, ...], p: int) -> Match | None:
