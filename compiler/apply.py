@@ -21,6 +21,15 @@ def side_graph(side: Side) -> Graph:
                  items_to_gaps([it for it in items if not (isinstance(it, tuple) and it[0] < 0)]))
 
 
+def wired_pairs(rhs: Side) -> tuple[tuple[int, int], ...]:
+    """Pairs of interface points (open-slot indices) that R joins by a bare wire."""
+    ends: dict[int, list[int]] = {}
+    for k, (v, _) in enumerate(rhs.open_slots()):
+        if v < 0:
+            ends.setdefault(-1 - v, []).append(k)
+    return tuple(sorted(tuple(ks) for ks in ends.values() if len(ks) == 2))
+
+
 def apply(lhs: Side, rhs: Side, img: list[int], host: Host) -> None:
     """Replace the match `img` of lhs in host by rhs, in place."""
     l_open = lhs.open_slots()

@@ -2,8 +2,11 @@
 
 Primitives fix rotation systems, so a match of a connected L is fixed by where one vertex of L
 goes: every other vertex is reached over L's edges, slot by slot. Open slots of L may be open or
-glued to anything in G (they are the interface), so the dangling condition holds by
-construction.
+glued to anything in G outside the match (they are the interface), so the dangling condition
+holds by construction. Open slots of L glued to each other in G are fine, except where the
+right side joins them by bare wires into a closed loop with no vertex: that is no graph, and no
+starter builds it back, so such a placement is not a match (else the complete hollow house
+"reduces" to ∅ through such a loop and never gets a starter).
 """
 
 from __future__ import annotations
@@ -23,9 +26,11 @@ class Pattern:
     graph: Graph
     plans: tuple[Plan, ...]                    # a spanning walk from each root vertex
     checks: tuple[Edge, ...]                   # every edge, checked once all vertices are placed
+    opens: tuple[tuple[int, int], ...] = ()    # open slots, in boundary order
+    wires: tuple[tuple[int, int], ...] = ()    # open-slot index pairs the right side wires together
 
     @staticmethod
-    def of(g: Graph) -> "Pattern":
+    def of(g: Graph, wires: Sequence[tuple[int, int]] = ()) -> "Pattern":
         part: list[dict[int, tuple[int, int]]] = [{} for _ in g.verts]
         for v, i, w, j in g.edges:
             part[v][i] = (w, j)
@@ -46,7 +51,8 @@ class Pattern:
                         order.append(w)
                         plan.append((u, i, w, j))
             plans.append(tuple(plan))
-        return Pattern(g, tuple(plans), g.edges)
+        return Pattern(g, tuple(plans), g.edges, tuple(slot for slot, _ in g.gaps),
+                       tuple(sorted(wires)))
 
 
 class Host:
@@ -108,8 +114,34 @@ def matches(pat: Pattern, host: Host, anchors: Sequence[int] | None = None
             used.add(q[0])
         if not ok:
             continue
-        if all(host.part[img[v]].get(i) == (img[w], j) for v, i, w, j in pat.checks):
-            yield img
+        if not all(host.part[img[v]].get(i) == (img[w], j) for v, i, w, j in pat.checks):
+            continue
+        if pat.wires and _bare_loop(pat, host, img):
+            continue
+        yield img
+
+
+def _bare_loop(pat: Pattern, host: Host, img: list[int]) -> bool:
+    """Whether wires of the right side and edges of G between open slots of L close a loop."""
+    index = {(img[v], i): k for k, (v, i) in enumerate(pat.opens)}
+    inner = {}
+    for k, (v, i) in enumerate(pat.opens):
+        q = host.part[img[v]].get(i)
+        if q is not None and q in index:
+            inner[k] = index[q]
+    partner = {}
+    for a, b in pat.wires:
+        partner[a], partner[b] = b, a
+    for start in sorted(partner):
+        cur = start
+        for _ in range(len(pat.opens)):
+            nxt = partner.get(cur)
+            if nxt is None or nxt not in inner:
+                break
+            cur = inner[nxt]
+            if cur == start:
+                return True
+    return False
 
 
 def contains(pat: Pattern, host: Host, anchors: Sequence[int] | None = None) -> bool:

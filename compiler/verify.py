@@ -15,7 +15,7 @@ from typing import Callable, Sequence
 
 from grammar_lang.rules import Grammar
 
-from .apply import apply, side_graph
+from .apply import apply, side_graph, wired_pairs
 from .canon import Key, canonical_key, split
 from .gluing import Graph, block_slots, children, primitive_graph
 from .occurrence import Host, Pattern, matches
@@ -98,7 +98,8 @@ class Reducer:
             if len(r.lhs.components()) != 1 or r.lhs.wires:
                 self.skipped.append(r.name)
                 continue
-            self.rules.append((r, Pattern.of(side_graph(r.lhs))))
+            # No reduction may close R's wires into a loop with no vertex (see occurrence).
+            self.rules.append((r, Pattern.of(side_graph(r.lhs), wired_pairs(r.rhs))))
         self.memo: dict[Key, bool] = {}
         self.budget = budget
         self.steps = 0

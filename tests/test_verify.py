@@ -52,3 +52,26 @@ def test_cli_errors_are_diagnostics(tmp_path, capsys):
     assert main(["verify", str(tmp_path / "missing.ggr")]) == 2
     assert main(["compile", str(tmp_path / "x.txt")]) == 2
     assert "Traceback" not in capsys.readouterr().err
+
+
+def test_a_match_never_closes_wires_into_a_loop_without_vertices():
+    # Cut one edge of a complete graph: the rest, as a left side whose right side is one bare
+    # wire, matches the complete graph only by closing that wire on itself; that is no match.
+    from compiler.canon import components
+    from compiler.gluing import Graph, walk_boundary
+    from compiler.occurrence import Host, Pattern, contains
+    from compiler.verify import complete_graphs
+    from hand_examples import RECTANGLE, make
+    rings = [p.ring for p in make(RECTANGLE).primitives]
+    graphs, _ = complete_graphs(rings, 6, True, 1000)
+    assert graphs
+    for g in graphs:
+        host = Host(g.verts, g.edges)
+        for e in g.edges:
+            rest = tuple(x for x in g.edges if x != e)
+            if len(components(len(g.verts), rest)) != 1:
+                continue
+            cut = Graph(g.verts, rest, walk_boundary(g.verts, rest, (e[0], e[1]), rings))
+            assert len(cut.gaps) == 2
+            assert contains(Pattern.of(cut), host)
+            assert not contains(Pattern.of(cut, ((0, 1),)), host)
