@@ -7,6 +7,8 @@ import re
 from pathlib import Path
 
 import pytest
+
+from conftest import CORPUS
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from ggr_strategies import grammars, renumbered, sides
@@ -17,7 +19,6 @@ from grammar_lang.ggr_parser import load_ggr, parse_ggr
 from grammar_lang.rules import Grammar, Rule
 
 ROOT = Path(__file__).resolve().parent.parent
-CORPUS = ROOT.parent / "shared" / "corpus" / "examples"
 DOC = ROOT / "docs" / "ggr-language.md"
 
 
@@ -59,7 +60,6 @@ def corpus_headers():
     return out
 
 
-@pytest.mark.skipif(not CORPUS.is_dir(), reason="corpus not available")
 @pytest.mark.parametrize("header", corpus_headers() if CORPUS.is_dir() else [])
 @settings(max_examples=8, deadline=None)
 @given(data=st.data())
@@ -153,7 +153,6 @@ COMPILED = ["square-hollow", "curl", "star-hollow", "double-branch", "diagonal-r
             "intersection", "triangle-square", "star-filled", "u"]
 
 
-@pytest.mark.skipif(not CORPUS.is_dir(), reason="corpus not available")
 @pytest.mark.parametrize("stem", COMPILED)
 def test_compiled_corpus_grammars_validate_and_round_trip(stem, tmp_path):
     from compiler.infer import compile_example
