@@ -75,6 +75,7 @@ class Engine:
         self.cost = cost or NoCost()
         self.temperature = temperature
         self.I, self.J = I, J
+        self._deltas: dict[int, tuple] = {}
         self.reset(seed)
 
     def reset(self, seed: int) -> None:
@@ -125,26 +126,70 @@ class Engine:
 
     # --- doing ------------------------------------------------------------------------------
     def step(self) -> Outcome:
-        choice = self.schedule.choose(self.host, self.rng, self.applied_by_level)
+        # The Metropolis coin is tossed for each move before its match is searched, on the
+        # counts the move usually produces (they do not depend on where it matches when every
+        # interface slot is glued); a refused move costs no search. The exact counts are
+        # checked once the match is known, and a move that predicted them wrongly is tested
+        # again on them.
+        now = self.cost.value(self.stats())
+        predicted: dict[int, Stats] = {}
+
+        def screen(move: DirectedRule) -> bool:
+            st = self._predict(move)
+            predicted[id(move)] = st
+            return metropolis_accepts(self.cost.value(st) - now, self.temperature,
+                                      float(self.rng.random()))
+
+        choice = self.schedule.choose(self.host, self.rng, self.applied_by_level, screen)
         if choice is None:
             return Outcome(None, "terminal")
-        level, move, match = choice
-        out = self.apply(move, match, priority=level.priority)
+        level, move, match, refused = choice
+        if refused:
+            return Outcome(None, "cost", move, match)
+        out = self.apply(move, match, priority=level.priority, screened=predicted[id(move)])
         out.move, out.match = move, match
         return out
 
+    def _predict(self, move: DirectedRule) -> Stats:
+        """The counts after `move` when every interface slot of its match is glued."""
+        delta = self._deltas.get(id(move))
+        if delta is None:
+            rings = self.grammar.rings
+            counts = [0] * len(self.host.label_count)
+            ne = 0
+            for side, sign in ((move.replacement, 1), (move.pattern.side, -1)):
+                for v, i, _, _ in side.edges:
+                    counts[rings[side.vertices[v]][i] >> 1] += sign
+                    ne += sign
+                for tok in side.wires:
+                    counts[tok >> 1] += sign
+                    ne += sign
+            dv = len(move.replacement.vertices) - len(move.pattern.side.vertices)
+            delta = self._deltas[id(move)] = (dv, ne, tuple(counts))
+        h = self.host
+        dv, ne, counts = delta
+        b = h.grid.bounds()
+        area = 0.0 if b is None else (b[2] - b[0]) * (b[3] - b[1]) / h.t.unit ** 2
+        return Stats(len(h) + dv, h.n_edges + ne,
+                     tuple(c + d for c, d in zip(h.label_count, counts)), area)
+
     def apply(self, move: DirectedRule, match: Match, priority: int | None = None,
-              use_cost: bool = True) -> Outcome:
+              use_cost: bool = True, screened: Stats | None = None) -> Outcome:
+        """Place and commit `move` at `match`, unless the cost refuses it (`screened`: the
+        counts its coin was already tossed on, when step() tossed it)."""
         host = self.host
         change = plan(host, move, match, self.schedule.spo)
         if use_cost:
-            delta = self.cost.value(self.stats(change)) - self.cost.value(self.stats())
-            if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
-                return Outcome(None, "cost")
+            after = self.stats(change)
+            if after != screened:
+                delta = self.cost.value(after) - self.cost.value(self.stats())
+                if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
+                    return Outcome(None, "cost")
         fixed = self._center(change)
         # A free-standing new component may go anywhere: a fresh place for every sample.
-        center = (lambda: self._center(change)) if self._floating(change) else (lambda: fixed)
-        solver = Solver(host, change, self.rng, center, self.I, self.J)
+        floating = self._floating(change)
+        center = (lambda: self._center(change)) if floating else (lambda: fixed)
+        solver = Solver(host, change, self.rng, center, self.I, self.J, floating)
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():

@@ -44,11 +44,17 @@ class Placement:
 
 class Solver:
     def __init__(self, host: Host, change: Change, rng: np.random.Generator,
-                 center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES):
+                 center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
+                 floating: bool = False):
         self.host, self.change, self.rng = host, change, rng
         self.center, self.I, self.J = center, I, J
+        # Where new vertices are aimed, for the doomed-round test; a floating component's
+        # centre varies per sample, but only by a translation, which moves no length.
+        self._box_centre = (0.0, 0.0) if floating else center()
+        self._centre_spread = 0.0
         self.new_prim = dict(change.new)
         self.removed = set(change.removed)
+        self.aim = self._aims()
         u = host.t.unit
         self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
         self.clearance = max(self.clearance, 1e-9 * u)
@@ -56,6 +62,38 @@ class Solver:
         # New edges between two old vertices (a wire replaced): constraints from the start.
         self.bridges = [(a, b) for a, b in change.glue
                         if a[0] not in self.new_prim and b[0] not in self.new_prim]
+
+    def _aims(self) -> dict[int, Point]:
+        """Where each new vertex is aimed: beside the old vertices it is glued to, else beside
+        those its part of the new side is glued to (so the parts of a spliced side go to their
+        own places, near the match, not all to its middle), else the change's centre."""
+        host = self.host
+        parent = {v: v for v in self.new_prim}
+
+        def root(v):
+            while parent[v] != v:
+                parent[v] = parent[parent[v]]
+                v = parent[v]
+            return v
+
+        own: dict[int, list[Point]] = {v: [] for v in self.new_prim}
+        for a, b in self.change.glue:
+            na, nb = a[0] in self.new_prim, b[0] in self.new_prim
+            if na and nb:
+                parent[root(a[0])] = root(b[0])
+            elif na:
+                own[a[0]].append(host.pos[b[0]])
+            elif nb:
+                own[b[0]].append(host.pos[a[0]])
+        part: dict[int, list[Point]] = {}
+        for v in sorted(self.new_prim):
+            part.setdefault(root(v), []).extend(own[v])
+        aim = {}
+        for v in self.new_prim:
+            pts = own[v] or part[root(v)]
+            if pts:
+                aim[v] = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
+        return aim
 
     def prim(self, v: int) -> int:
         p = self.new_prim.get(v)
@@ -158,7 +196,47 @@ class Solver:
             lo, hi, _, _ = t.lengths[edges[e][5]]
             if not (c[e] > tol and lo - tol <= c[e] <= hi + tol):
                 return None, "length fixed out of range"
+        # More generally a length is affine in the target, which ranges over a box (positions
+        # within 3σ of their centre, lengths within their draw range): when a length's range
+        # over that box misses its class, no sample can pass and the round is skipped.
+        mid, half = self._target_box(free, edges)
+        centre = R @ mid + c
+        spread = np.abs(R) @ half
+        for e, (*_, lab) in enumerate(edges):
+            lo, hi, _, _ = t.lengths[lab]
+            if centre[e] + spread[e] <= tol or centre[e] + spread[e] < lo - tol \
+                    or centre[e] - spread[e] > hi + tol:
+                return None, "length out of range"
         return edges, A, b, scale, Mp
+
+    def _target_box(self, free, edges) -> tuple[np.ndarray, np.ndarray]:
+        """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
+        host, t = self.host, self.host.t
+        u = t.unit
+        nF = len(free)
+        mid = np.zeros(2 * nF + len(edges))
+        half = np.zeros_like(mid)
+        cx, cy = self._box_centre
+        for k, v in enumerate(free):
+            p = host.pos.get(v)
+            if p is None:
+                mid[2 * k], mid[2 * k + 1] = self.aim.get(v, (cx, cy))
+                half[2 * k] = half[2 * k + 1] = 1.5 * u + self._centre_spread
+            else:
+                mid[2 * k], mid[2 * k + 1] = p
+        for e, (v, i, w, j, d, lab) in enumerate(edges):
+            lo, hi, fixed, tile = t.lengths[lab]
+            if fixed is not None:
+                mid[2 * nF + e] = fixed
+            elif v in host.prim and host.link[v][i] == (w, j):
+                pv, pw = host.pos[v], host.pos[w]
+                mid[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
+            else:
+                a, bb = max(lo, 0.5 * u), min(hi, 1.5 * u)
+                if a > bb:
+                    a, bb = lo, hi
+                mid[2 * nF + e], half[2 * nF + e] = 0.5 * (a + bb), 0.5 * (bb - a)
+        return mid, half
 
     def _targets(self, free, edges) -> np.ndarray:
         host, t, rng = self.host, self.host.t, self.rng
@@ -170,7 +248,8 @@ class Solver:
         for k, v in enumerate(free):
             p = host.pos.get(v)
             if p is None:
-                x[2 * k], x[2 * k + 1] = cx + noise[2 * k], cy + noise[2 * k + 1]
+                ax, ay = self.aim.get(v, (cx, cy))
+                x[2 * k], x[2 * k + 1] = ax + noise[2 * k], ay + noise[2 * k + 1]
             else:
                 x[2 * k], x[2 * k + 1] = p
         draws = rng.random(len(edges))

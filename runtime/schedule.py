@@ -20,6 +20,7 @@ creates its component (it runs ∅ → lhs) and never deletes one.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -77,32 +78,51 @@ class Schedule:
     def moves(self) -> list[DirectedRule]:
         return [m for lv in self.levels for m in lv.moves]
 
-    def choose(self, host: Host, rng: np.random.Generator,
-               applied: dict[int, int]) -> tuple[Level, DirectedRule, Match] | None:
-        """The level, move and match for the next step, or None when nothing applies."""
+    def choose(self, host: Host, rng: np.random.Generator, applied: dict[int, int],
+               screen: Callable[[DirectedRule], bool] | None = None,
+               ) -> tuple[Level, DirectedRule, Match, bool] | None:
+        """The level, move and match for the next step, or None when nothing applies; the flag
+        says the move was refused by `screen` (the cost's coin, tossed before any search).
+
+        A screened-out move is set aside without a search. Only when no other move of the level
+        applies are the set-aside ones searched, and then the first with a match is returned
+        flagged as refused: so a level is still passed over only when none of its moves applies,
+        and the cost's refusals no longer pay for a match search each.
+        """
         for level in self.levels:
             if level.limit is not None and applied.get(level.priority, 0) >= level.limit:
                 continue
+            order = self._order(level, host, rng)
+            refused: list[int] = []
+            if screen is not None:
+                keep = []
+                for k in order:
+                    (keep if screen(level.moves[k]) else refused).append(k)
+                order = keep
             # First cheap probes (a few random anchors per move), then exact searches, so a
             # step costs O(moves) and a level is still only passed over when nothing applies.
-            for probes in (PROBES, None):
-                found = self._draw(level, host, rng, probes)
-                if found is not None:
-                    return level, found[0], found[1]
+            for ks, flag in ((order, False), (refused, True)):
+                for probes in (PROBES, None):
+                    found = self._draw(level, ks, host, rng, probes)
+                    if found is not None:
+                        return level, found[0], found[1], flag
         return None
 
-    def _draw(self, level: Level, host: Host, rng: np.random.Generator, probes: int | None):
+    @staticmethod
+    def _order(level: Level, host: Host, rng: np.random.Generator) -> list[int]:
         # Weighted sampling without replacement in one go: sorting by u^(1/w) draws the same
         # order as repeated weighted draws (Efraimidis & Spirakis). Moves needing a primitive
-        # the host does not have are skipped without a search.
+        # the host does not have are left out without a search.
         w = np.asarray(level.weights, dtype=float)
         keys = rng.random(len(w)) ** (1.0 / w)
         absent = np.array([not lst for lst in host.by_prim], dtype=bool)
         if absent.any():
             keys[level.requires[:, absent].any(axis=1)] = -1.0
-        for k in np.argsort(-keys, kind="stable"):
-            if keys[k] < 0:
-                break
+        return [int(k) for k in np.argsort(-keys, kind="stable") if keys[k] >= 0]
+
+    def _draw(self, level: Level, ks: list[int], host: Host, rng: np.random.Generator,
+              probes: int | None):
+        for k in ks:
             match = find_match(host, level.moves[k].pattern, rng, self.spo, probes)
             if match is not None:
                 return level.moves[k], match
