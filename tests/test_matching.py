@@ -1,5 +1,7 @@
 """Algorithm 2: building a boundary from simpler graphs' boundaries by splicing (§5.3)."""
 
+from hypothesis import given, settings, strategies as st
+
 from compiler.matching import Matcher, Piece
 from grammar_lang import boundary as bd
 
@@ -72,3 +74,45 @@ def test_without_splicing_only_equal_boundaries_match():
     assert m.find(gaps((a, b, up)), (2, 100)) is not None
     # Only simpler graphs: a graph never matches itself or a later graph.
     assert m.find(gaps((a, b, up)), (2, 2)) is None
+
+
+def _splice(a, b, at, lead):
+    """A|B spliced after A's half-edge `at` with `lead` turns before B (the ∧ⁿ…∨ⁿ⁺¹ freedom):
+    the turns from A[at] to A[at + 1] stay what they were."""
+    inner = sum(n for _, n in b[:-1])
+    tok, n = a[at]
+    out = list(a[:at]) + [(tok, lead)] + list(b[:-1]) + [(b[-1][0], n - lead - inner)]
+    return tuple(out) + tuple(a[at + 1:])
+
+
+def _turns_between(target, a, b):
+    m = len(target)
+    return sum(target[(a + d) % m][1] for d in range((b - a) % m or m))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.data())
+def test_any_splice_of_pieces_is_found(data):
+    n = data.draw(st.integers(2, 4))
+    pieces = []
+    for k in range(n):
+        size = data.draw(st.integers(1, 3))
+        toks = data.draw(st.lists(st.integers(0, 5), min_size=size, max_size=size))
+        turns = data.draw(st.lists(st.integers(-1, 1), min_size=size - 1, max_size=size - 1))
+        turns.append(1 - sum(turns))
+        pieces.append(tuple(zip(toks, turns)))
+    target = pieces[0]
+    for b in pieces[1:]:
+        at = data.draw(st.integers(0, len(target) - 1))
+        target = _splice(target, b, at, data.draw(st.integers(-2, 2)))
+    m = Matcher(splice=True)
+    for k, p in enumerate(pieces):
+        m.add(Piece(k, p, (len(p), k)))
+    match = m.find(target, (len(target) + 1, 0))
+    assert match is not None
+    spliced(match, target)
+    for p, pos in match:
+        # Between consecutive half-edges of a piece the target turns as the piece does.
+        for q in range(len(pos)):
+            if len(pos) > 1:
+                assert _turns_between(target, pos[q], pos[(q + 1) % len(pos)]) == p.toks[q][1]
