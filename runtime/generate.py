@@ -132,13 +132,13 @@ class Engine:
         # checked once the match is known, and a move that predicted them wrongly is tested
         # again on them.
         now = self.cost.value(self.stats())
-        predicted: dict[int, Stats] = {}
+        rise: dict[tuple, float] = {}       # cost change per count change, within this step
 
         def screen(move: DirectedRule) -> bool:
-            st = self._predict(move)
-            predicted[id(move)] = st
-            return metropolis_accepts(self.cost.value(st) - now, self.temperature,
-                                      float(self.rng.random()))
+            key = self._delta(move)
+            if key not in rise:
+                rise[key] = self.cost.value(self._stats_after(key)) - now
+            return metropolis_accepts(rise[key], self.temperature, float(self.rng.random()))
 
         choice = self.schedule.choose(self.host, self.rng, self.applied_by_level, screen)
         if choice is None:
@@ -146,12 +146,14 @@ class Engine:
         level, move, match, refused = choice
         if refused:
             return Outcome(None, "cost", move, match)
-        out = self.apply(move, match, priority=level.priority, screened=predicted[id(move)])
+        out = self.apply(move, match, priority=level.priority,
+                         screened=self._stats_after(self._delta(move)))
         out.move, out.match = move, match
         return out
 
-    def _predict(self, move: DirectedRule) -> Stats:
-        """The counts after `move` when every interface slot of its match is glued."""
+    def _delta(self, move: DirectedRule) -> tuple:
+        """How `move` changes the counts (vertices, edges, per label) when every interface
+        slot of its match is glued: the same wherever it matches."""
         delta = self._deltas.get(id(move))
         if delta is None:
             rings = self.grammar.rings
@@ -166,6 +168,9 @@ class Engine:
                     ne += sign
             dv = len(move.replacement.vertices) - len(move.pattern.side.vertices)
             delta = self._deltas[id(move)] = (dv, ne, tuple(counts))
+        return delta
+
+    def _stats_after(self, delta: tuple) -> Stats:
         h = self.host
         dv, ne, counts = delta
         b = h.grid.bounds()

@@ -55,13 +55,33 @@ class Solver:
         self.new_prim = dict(change.new)
         self.removed = set(change.removed)
         self.aim = self._aims()
+        self.scale = self._local_scale()
         u = host.t.unit
         self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
         self.clearance = max(self.clearance, 1e-9 * u)
         self.failures: dict[str, int] = {}
+        self.unique = False
         # New edges between two old vertices (a wire replaced): constraints from the start.
         self.bridges = [(a, b) for a, b in change.glue
                         if a[0] not in self.new_prim and b[0] not in self.new_prim]
+
+    def _local_scale(self) -> float:
+        """The typical edge length where the change happens (the edges it removes or cuts),
+        the unit when it removes none: new parts are drawn at the scale of what they replace,
+        so that in a dense neighbourhood their edges do not reach across their neighbours."""
+        host = self.host
+        lengths = []
+        for v in self.change.removed:
+            for s in host.link[v]:
+                if s is not None:
+                    p, q = host.pos[v], host.pos[s[0]]
+                    lengths.append(_dist(p, q))
+        for v, i in self.change.cut:
+            w = host.link[v][i][0]
+            lengths.append(_dist(host.pos[v], host.pos[w]))
+        if not lengths:
+            return host.t.unit
+        return float(np.median(lengths))
 
     def _aims(self) -> dict[int, Point]:
         """Where each new vertex is aimed: beside the old vertices it is glued to, else beside
@@ -119,7 +139,7 @@ class Solver:
             elif system[0] is None:
                 self._fail(system[1])
             else:
-                for _ in range(self.J):
+                for _ in range(1 if self.unique else self.J):
                     pos = self._sample(free, *system)
                     if pos is not None:
                         freed = tuple(v for v in free if v in host.prim)
@@ -188,8 +208,11 @@ class Solver:
         # Lengths the system fixes whatever the target (their row of x = R t + c is constant):
         # one outside its class's range dooms every sample, so the round is skipped.
         nF2 = 2 * nF
-        R = np.eye(A.shape[1])[nF2:] - (scale[nF2:, None] * (Mp[nF2:] @ A))
+        P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
+        R = P[nF2:]
         c = scale[nF2:] * (Mp[nF2:] @ b)
+        # A system with one solution gives the same sample every time: one try is enough.
+        self.unique = bool(np.abs(P).max(initial=0.0) < 1e-9)
         fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
         tol = 1e-7 * t.unit
         for e in np.flatnonzero(fixed_rows):
@@ -212,7 +235,7 @@ class Solver:
     def _target_box(self, free, edges) -> tuple[np.ndarray, np.ndarray]:
         """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
         host, t = self.host, self.host.t
-        u = t.unit
+        u = self.scale
         nF = len(free)
         mid = np.zeros(2 * nF + len(edges))
         half = np.zeros_like(mid)
@@ -240,7 +263,7 @@ class Solver:
 
     def _targets(self, free, edges) -> np.ndarray:
         host, t, rng = self.host, self.host.t, self.rng
-        u = t.unit
+        u = self.scale
         nF = len(free)
         x = np.empty(2 * nF + len(edges))
         noise = rng.normal(0.0, 0.5 * u, size=2 * nF)
