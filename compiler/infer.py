@@ -29,7 +29,7 @@ from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
-from .canon import components
+from .canon import canonical_key, components, split
 from .gluing import Graph, block_slots, children
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .matching import Match, Matcher, Piece
@@ -38,6 +38,7 @@ from .pruning import TurnAnalysis
 
 SELF_CHECK_PRIMITIVES = 5     # complete graphs this small are verified before claiming "complete"
 SELF_CHECK_GRAPHS = 1500
+EXAMPLE_CHECK_STEPS = 300  # rule applications tried on an example component before it gets a starter
 Progress = Callable[[int, int, int], None]     # (generation, hierarchy graphs, rules)
 
 
@@ -349,8 +350,25 @@ class Inference:
         if res.failed:
             self.state.limits_hit.add("self-check")
 
+    def _example_starters(self) -> None:
+        """A starter for each of the example's own connected components that the rules cannot
+        reduce to ∅. A complete grammar reduces them all, so this adds nothing to one; a limited
+        grammar may never have met a complete graph (or met it only as the holder of a left side
+        that reduces it through a vertex-less loop), and would otherwise draw nothing."""
+        from .verify import Reducer
+        graphs = example_graphs(self.ex)
+        if not graphs:
+            return
+        for g in graphs:
+            grammar = Grammar(header(self.ex, False), tuple(r.rule for r in self.state.rules))
+            if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g):
+                continue
+            node, _ = self.hier.lookup_or_add(g, self.generation, None)
+            self._add_rule(node, None)
+
     def _result(self) -> CompileResult:
         st = self.state
+        self._example_starters()
         if self.hier.count(OVER):
             st.limits_hit.add("half-edges")
         if not st.limits_hit and not any(self.hier.nodes[i].status == KEPT for i in self.frontier):
@@ -391,6 +409,22 @@ def header(ex: Example, complete: bool) -> Header:
                   exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
                   labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
                   decorations=ex.decorations, complete=complete)
+
+
+def example_graphs(ex: Example) -> list[Graph]:
+    """The example drawing's connected components as complete graphs of primitive instances,
+    one per isomorphism class, in canonical order."""
+    if ex.graph is None or not ex.vertex_primitive:
+        return []
+    rings = [ex.primitives[p].ring for p in ex.vertex_primitive]
+    edges = []
+    for (u, v, *_), (label, forward) in zip(ex.graph.edges, ex.edge_label):
+        a = (u, rings[u].index(bd.half(label, not forward)))
+        b = (v, rings[v].index(bd.half(label, forward)))
+        edges.append(min(a, b) + max(a, b))
+    ring_len = [len(p.ring) for p in ex.primitives]
+    unique = {canonical_key(g, ring_len): g for g in split(ex.vertex_primitive, edges)}
+    return [unique[k] for k in sorted(unique)]
 
 
 def compile_example(example: Example, progress: Progress | None = None) -> CompileResult:

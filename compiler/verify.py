@@ -89,7 +89,7 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
 
 
 class Reducer:
-    def __init__(self, grammar: Grammar, budget: int = 3000):
+    def __init__(self, grammar: Grammar, budget: int = 3000, apply_budget: float = float("inf")):
         self.rings = grammar.rings
         self.ring_len = [len(r) for r in self.rings]
         self.rules = []
@@ -102,10 +102,12 @@ class Reducer:
             self.rules.append((r, Pattern.of(side_graph(r.lhs), wired_pairs(r.rhs))))
         self.memo: dict[Key, bool] = {}
         self.budget = budget
+        self.apply_budget = apply_budget     # rule applications per graph (growing rules)
         self.steps = 0
+        self.applied = 0
 
     def reduces(self, g: Graph) -> bool:
-        self.steps = 0
+        self.steps = self.applied = 0
         ok = self._reduces(g)
         # A failure may only mean "every way down passed through a graph then in progress";
         # such failures are not final, so only successes are remembered across graphs.
@@ -127,6 +129,9 @@ class Reducer:
         host = Host(g.verts, g.edges)
         for rule, pat in self.rules:
             for img in matches(pat, host):
+                self.applied += 1
+                if self.steps > self.budget or self.applied > self.apply_budget:
+                    return False      # out of budget: no further way down is tried
                 h = Host(g.verts, g.edges)
                 apply(rule.lhs, rule.rhs, img, h)
                 live = h.live()

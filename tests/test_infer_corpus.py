@@ -3,7 +3,10 @@
 import pytest
 
 from conftest import CORPUS, corpus_names
-from compiler.infer import compile_example
+from compiler.apply import side_graph
+from compiler.canon import canonical_key
+from compiler.infer import EXAMPLE_CHECK_STEPS, compile_example, example_graphs
+from compiler.verify import Reducer
 from grammar_lang import boundary as bd
 from grammar_lang.loader import load_example
 
@@ -34,6 +37,15 @@ def test_compiles_within_default_limits(name):
             assert r.lhs.tokens(rings) == (bd.UP,) and not r.lhs.open_slots()
         else:
             assert bd.canonical(r.lhs.tokens(rings)) == bd.canonical(r.rhs.tokens(rings))
+    # Whatever the verdict, the grammar builds something: the example's own pieces.
+    assert rep.starters >= 1
+    ring_len = [len(r) for r in rings]
+    starters = {canonical_key(side_graph(r.lhs), ring_len)
+                for r in res.grammar.rules if r.is_starter}
+    reducer = Reducer(res.grammar, apply_budget=EXAMPLE_CHECK_STEPS)
+    for g in example_graphs(ex):
+        assert g.is_complete
+        assert canonical_key(g, ring_len) in starters or reducer.reduces(g)
 
 
 @pytest.mark.parametrize("name", SOLVED_BY_ORIGINAL)
