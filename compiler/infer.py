@@ -360,6 +360,8 @@ class Inference:
         if not graphs:
             return
         for g in graphs:
+            if not self.loops and len(g.edges) >= len(g.verts):
+                continue      # the option forbids loops: a drawing with a cycle is no output
             grammar = Grammar(header(self.ex, False), tuple(r.rule for r in self.state.rules))
             if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g):
                 continue
