@@ -164,35 +164,3 @@ def block_slots(blocks: Sequence[Graph], rings) -> dict[int, list[tuple[int, Slo
         for (v, i), _ in h.gaps:
             out.setdefault(rings[h.verts[v]][i], []).append((b, (v, i)))
     return out
-
-
-def walk_boundary(verts: Sequence[int], edges: Sequence[Edge], start: Slot, rings) -> Gaps:
-    """The boundary found by walking the face that leaves through open slot `start`.
-
-    At a vertex the walk turns counter-clockwise to the next slot of the ring (a ∧ when it wraps
-    past the last); crossing an edge from a barred half-edge is a ∨ (the direction turns by
-    −180° through −180°). This is the independent check of the string rewrites above.
-    """
-    partner: dict[Slot, Slot] = {}
-    for v, i, w, j in edges:
-        partner[(v, i)] = (w, j)
-        partner[(w, j)] = (v, i)
-    out: list[list] = []
-    v, i = start
-    out.append([start, 0])
-    for _ in range(4 * (sum(len(rings[p]) for p in verts) + 1)):
-        k = len(rings[verts[v]])
-        turn = 1 if i == k - 1 else 0
-        i = (i + 1) % k
-        out[-1][1] += turn
-        while (v, i) in partner:
-            tok = rings[verts[v]][i]
-            out[-1][1] += -1 if bd.is_bar(tok) else 0
-            v, i = partner[(v, i)]
-            k = len(rings[verts[v]])
-            out[-1][1] += 1 if i == k - 1 else 0
-            i = (i + 1) % k
-        if (v, i) == start:
-            return tuple((s, n) for s, n in out)
-        out.append([(v, i), 0])
-    raise ValueError("boundary walk did not close")

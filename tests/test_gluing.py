@@ -6,8 +6,9 @@ from hypothesis import given, settings, strategies as st
 
 from compiler.canon import canonical_key
 from compiler.gluing import (Graph, branch_glue, children, loop_glue, loop_gluable,
-                             primitive_graph, walk_boundary)
+                             primitive_graph)
 from grammar_lang import boundary as bd
+from grammar_lang.graph import Side, face_walk
 
 # Rings (tokens CCW by angle) of three primitive sets: the hollow rectangle of Fig. 5, a box
 # with a diagonal (Fig. 4a) and a tree with a T junction. Tokens: x=0/1, y=2/3, d=4/5.
@@ -47,7 +48,7 @@ def test_rewrite_matches_walk_and_winds_once(which, choices):
             assert g.string(rings) == (bd.UP,)
             continue
         assert sum(n for _, n in g.gaps) == 1          # P − N = 1
-        walked = walk_boundary(g.verts, g.edges, g.gaps[0][0], rings)
+        walked = tuple(face_walk(Side(g.verts, g.edges, ()), g.gaps[0][0], rings))
         assert rotation_equal(walked, g.gaps)
 
 

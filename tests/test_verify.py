@@ -58,7 +58,8 @@ def test_a_match_never_closes_wires_into_a_loop_without_vertices():
     # Cut one edge of a complete graph: the rest, as a left side whose right side is one bare
     # wire, matches the complete graph only by closing that wire on itself; that is no match.
     from compiler.canon import components
-    from compiler.gluing import Graph, walk_boundary
+    from compiler.gluing import Graph
+    from grammar_lang.graph import Side, face_walk
     from compiler.occurrence import Host, Pattern, contains
     from compiler.verify import complete_graphs
     from hand_examples import RECTANGLE, make
@@ -71,7 +72,8 @@ def test_a_match_never_closes_wires_into_a_loop_without_vertices():
             rest = tuple(x for x in g.edges if x != e)
             if len(components(len(g.verts), rest)) != 1:
                 continue
-            cut = Graph(g.verts, rest, walk_boundary(g.verts, rest, (e[0], e[1]), rings))
+            cut = Graph(g.verts, rest, tuple(face_walk(Side(g.verts, rest, ()), (e[0], e[1]),
+                                                          rings)))
             assert len(cut.gaps) == 2
             assert contains(Pattern.of(cut), host)
             assert not contains(Pattern.of(cut, ((0, 1),)), host)
