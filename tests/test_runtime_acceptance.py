@@ -4,8 +4,6 @@ Each example is compiled once per session. For each, 20 seeds grow a short drawi
 pass the verifier; grammars with rules beyond starters must give at least 5 distinct
 structures in those 20 seeds and, asked for many steps, grow to at least 10× the example's
 vertex count. benchmarks/acceptance.py runs the same checks with longer runs and prints a table.
-Examples whose grammar cannot make a drawing yet are strict xfails: they fail the suite once
-they are fixed, so the marker is removed then.
 """
 
 from __future__ import annotations
@@ -22,10 +20,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 import acceptance as acc  # noqa: E402
 
 SEEDS = 20
-STEPS = 15            # per seed, plus the example's vertex count: enough to vary, cheap for 20
-# Compiled grammars that have no starter rule, so no drawing at all (compiler work in progress).
-NO_DRAWING_YET = {"diagonal-complex.svg", "house-hollow.svg"}
-
+STEPS = 20            # per seed, plus the example's vertex count: enough to vary, cheap for 20
 EXAMPLES = [f"{n}.svg" for n in corpus_names()] + sorted(
     p.name for p in (ROOT / "examples").glob("*.gg"))
 
@@ -34,21 +29,12 @@ def _path(name: str) -> Path:
     return CORPUS / name if name.endswith(".svg") else ROOT / "examples" / name
 
 
-def _params():
-    out = []
-    for name in EXAMPLES:
-        marks = [pytest.mark.xfail(strict=True, reason="its grammar makes no drawing yet")] \
-            if name in NO_DRAWING_YET else []
-        out.append(pytest.param(name, marks=marks, id=name))
-    return out
-
-
 @lru_cache(maxsize=None)
 def _compiled(name: str) -> acc.Compiled:
     return acc.compile_path(_path(name))
 
 
-@pytest.mark.parametrize("name", _params())
+@pytest.mark.parametrize("name", EXAMPLES)
 def test_twenty_seeds_pass_the_verifier_and_vary(name):
     c = _compiled(name)
     assert not c.problem, c.problem
@@ -70,7 +56,7 @@ def test_twenty_seeds_pass_the_verifier_and_vary(name):
             assert len(structures) >= 5
 
 
-@pytest.mark.parametrize("name", _params())
+@pytest.mark.parametrize("name", EXAMPLES)
 def test_grammars_with_rules_grow_tenfold(name):
     c = _compiled(name)
     assert not c.problem, c.problem
