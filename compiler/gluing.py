@@ -13,7 +13,7 @@ rules of §4.2 become small arithmetic on them:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Iterator, Sequence
 
 from grammar_lang import boundary as bd
@@ -29,6 +29,9 @@ class Graph:
     verts: tuple[int, ...]        # primitive index of each vertex
     edges: tuple[Edge, ...]       # glued slot pairs (v, i, w, j), (v, i) < (w, j), sorted
     gaps: Gaps                    # cyclic boundary: (open slot, turns after it)
+    # The blocks glued, in order: each instance takes the next len(block.verts) vertices. Any
+    # one way of building the graph will do, so this is not part of its identity.
+    units: tuple[int, ...] = field(default=(), compare=False)
 
     @property
     def n_half(self) -> int:
@@ -78,7 +81,7 @@ def items_to_gaps(items: Sequence) -> Gaps:
 
 def primitive_graph(prim: int, ring_len: int) -> Graph:
     gaps = tuple(((0, i), 1 if i == ring_len - 1 else 0) for i in range(ring_len))
-    return Graph((prim,), (), gaps)
+    return Graph((prim,), (), gaps, (prim,))
 
 
 def _items(g: Graph) -> list:
@@ -95,8 +98,9 @@ def _rotate_to(items: list, slot: Slot) -> list:
     return items[k:] + items[:k]
 
 
-def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings) -> Graph:
-    """Glue open slot `s` of `g` to open slot `t` of `h` (disjoint graphs, opposite tokens)."""
+def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings, unit: int | None = None) -> Graph:
+    """Glue open slot `s` of `g` to open slot `t` of `h` (disjoint graphs, opposite tokens);
+    `unit` names h when it is a block glued whole."""
     off = len(g.verts)
     ht = (t[0] + off, t[1])
     h_items = [(it[0] + off, it[1]) if isinstance(it, tuple) else it for it in _items(h)]
@@ -108,7 +112,8 @@ def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings) -> Graph:
     edges = g.edges + tuple((v + off, i, w + off, j) for v, i, w, j in h.edges)
     a, b = sorted((s, ht))
     edges = tuple(sorted(edges + ((a[0], a[1], b[0], b[1]),)))
-    return Graph(g.verts + h.verts, edges, items_to_gaps(items))
+    units = g.units + ((unit,) if unit is not None else h.units)
+    return Graph(g.verts + h.verts, edges, items_to_gaps(items), units)
 
 
 def loop_gluable(g: Graph, k: int, rings) -> bool:
@@ -129,12 +134,12 @@ def loop_glue(g: Graph, k: int) -> Graph:
     a, b = sorted((s1, s2))
     edges = tuple(sorted(g.edges + ((a[0], a[1], b[0], b[1]),)))
     if m == 2:
-        return Graph(g.verts, edges, ())
+        return Graph(g.verts, edges, (), g.units)
     gaps = list(g.gaps)
     p = (k - 1) % m
     gaps[p] = (gaps[p][0], gaps[p][1] + n1 + n2)
     rest = [gp for idx, gp in enumerate(gaps) if idx not in (k, (k + 1) % m)]
-    return Graph(g.verts, edges, tuple(rest))
+    return Graph(g.verts, edges, tuple(rest), g.units)
 
 
 def children(g: Graph, blocks: Sequence[Graph], rings, allow_loops: bool = True,
@@ -154,7 +159,20 @@ def children(g: Graph, blocks: Sequence[Graph], rings, allow_loops: bool = True,
         want = bd.opposite(rings[g.verts[s[0]]][s[1]])
         for b, t in by_token.get(want, ()):
             h = blocks[b]
-            yield "branch", branch_glue(g, s, h, t, rings), tuple(range(n, n + len(h.verts)))
+            yield ("branch", branch_glue(g, s, h, t, rings, b),
+                   tuple(range(n, n + len(h.verts))))
+
+
+def unit_places(g: Graph, sizes: Sequence[int]) -> list[tuple[int, int]] | None:
+    """For each vertex of g: (its unit instance, that instance's first vertex); None when g's
+    units are unknown."""
+    out: list[tuple[int, int]] = []
+    for k, u in enumerate(g.units):
+        if u >= len(sizes):
+            return None
+        base = len(out)
+        out.extend((k, base) for _ in range(sizes[u]))
+    return out if len(out) == len(g.verts) else None
 
 
 def block_slots(blocks: Sequence[Graph], rings) -> dict[int, list[tuple[int, Slot]]]:

@@ -6,7 +6,9 @@ complete (a starter rule, §5.3.1); matched by simpler graphs (a rule, Algorithm
 have no complete irreducible descendants (pruned, §5.6); or else irreducible, kept as a piece
 for later matches and expanded in the next generation. After each generation every irreducible
 graph is tried again as a left side, since simpler graphs may have appeared since (this is how
-rules whose right side holds descendants of the left are found, §5.4-5.5).
+rules whose right side holds descendants of the left are found, §5.4-5.5). When such a rule turns
+one whole block into graphs that hold it, the hierarchy is restructured (§5.4): those graphs
+replace the block, and the hierarchy starts again from the new blocks (`_restructure`).
 
 The grammar is complete when a generation leaves nothing to expand and no limit cut anything
 off: then every graph of the abstract hierarchy is reducible, pruned or a duplicate, so every
@@ -18,7 +20,7 @@ from __future__ import annotations
 import hashlib
 import time
 from collections import Counter
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -29,8 +31,8 @@ from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
-from .canon import canonical_key, components, split
-from .gluing import Graph, block_slots, children
+from .canon import canonical_key, split
+from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .matching import Match, Matcher, Piece
 from .occurrence import Host, Pattern, contains
@@ -38,6 +40,7 @@ from .pruning import TurnAnalysis
 
 SELF_CHECK_PRIMITIVES = 5     # complete graphs this small are verified before claiming "complete"
 SELF_CHECK_GRAPHS = 1500
+HIERARCHY_SHARE = 0.85     # of the time limit; the rest is for the example's starters
 EXAMPLE_CHECK_STEPS = 300  # rule applications tried on an example component before it gets a starter
 Progress = Callable[[int, int, int], None]     # (generation, hierarchy graphs, rules)
 
@@ -105,34 +108,54 @@ class Inference:
         opts = example.options
         self.limits = opts.limits
         self.loops = not opts.no_loops
-        self.hier = Hierarchy(self.ring_len)
-        self.matcher = Matcher(splice=not (opts.connected or opts.no_loops))
-        self.turns = TurnAnalysis(self.rings)
-        self.state = _State()
+        self.splice = not (opts.connected or opts.no_loops)
         self.progress = progress
-        self.blocks = grouping.blocks(self.rings, enabled=group)
-        self.slots = block_slots(self.blocks, self.rings)
-        self.forced: set[tuple[int, int, int, int]] = set()
-        for p, i, q, j in grouping.forced_pairs(self.rings):
-            self.forced.update({(p, i, q, j), (q, j, p, i)})
-        self.block_size = {p: len(b.verts) for b in self.blocks for p in b.verts}
-        self.block_sizes = {p: {len(b.verts)} for b in self.blocks for p in b.verts}
-        self.frontier: list[int] = []
         self.t0 = time.perf_counter()
+        self.structural: list[Rule] = []     # §5.4 rules that restructured the blocks
+        self.pending: tuple[list[Graph], set[int], Rule] | None = None
+        self.limits_hit: set[str] = set()
+        self._start(grouping.blocks(self.rings, enabled=group), original=None)
+
+    def _start(self, blocks: list[Graph], original: set[int] | None) -> None:
+        """A fresh hierarchy glued from `blocks`; `original` are those that group primitives
+        (companion §3.3) rather than stand for a §5.4 rule's right side."""
+        self.blocks = [replace(b, units=(k,)) for k, b in enumerate(blocks)]
+        self.original = set(range(len(blocks))) if original is None else original
+        self.slots = block_slots(self.blocks, self.rings)
+        self.hier = Hierarchy(self.ring_len)
+        self.matcher = Matcher(splice=self.splice)
+        self.turns = TurnAnalysis(self.rings, self.blocks)
+        self.state = _State(limits_hit=self.limits_hit)
+        self.frontier: list[int] = []
         self.generation = 0
-        for lab in range(len(example.labels)):
+        for lab in range(len(self.ex.labels)):
             a = 2 * lab
             self.matcher.add(Piece(-1 - lab, ((a + 1, 0), (a, 1)), (2, -1 - lab)))
 
     # --- driver -----------------------------------------------------------------------------
 
     def run(self) -> CompileResult:
+        self._grow()
+        while self.pending is not None:
+            blocks, original, rule = self.pending
+            self.pending = None
+            self.structural.append(replace(rule, name=f"r{len(self.structural)}"))
+            self._start(blocks, original)
+            self._grow()
+        return self._result()
+
+    def _interrupted(self) -> bool:
+        return self.pending is not None or self._out_of_time() or self._too_many()
+
+    def _grow(self) -> None:
         self.generation = 1
         for b in self.blocks:
             self._process(b, 1, None, tuple(range(len(b.verts))))
+            if self.pending is not None:
+                return
         self._recheck()
         self._tick()
-        while self.frontier and not self._out_of_time():
+        while self.frontier and self.pending is None and not self._out_of_time():
             if self.generation >= self.limits.generations:
                 self.state.limits_hit.add("generations")
                 break
@@ -145,22 +168,24 @@ class Inference:
                 for _, child, anchors in children(node.graph, self.blocks, self.rings,
                                                   self.loops, self.slots):
                     self._process(child, self.generation, nid, anchors)
-                    if self._out_of_time() or self._too_many():
+                    if self._interrupted():
                         break
-                if self._out_of_time() or self._too_many():
+                if self._interrupted():
                     break
+            if self.pending is not None:
+                return
             self._recheck()
             self._tick()
             if self._too_many():
                 break
-        return self._result()
 
     def _tick(self) -> None:
         if self.progress:
-            self.progress(self.generation, len(self.hier.nodes), len(self.state.rules))
+            self.progress(self.generation, len(self.hier.nodes),
+                          len(self.structural) + len(self.state.rules))
 
     def _out_of_time(self) -> bool:
-        if time.perf_counter() - self.t0 > self.limits.seconds:
+        if time.perf_counter() - self.t0 > self.limits.seconds * HIERARCHY_SHARE:
             self.state.limits_hit.add("time")
             return True
         return False
@@ -235,6 +260,8 @@ class Inference:
             if match is not None:
                 self.matcher.remove(node.id)
                 self._add_rule(node, match)
+                if self.pending is not None:
+                    return
 
     # --- rules ------------------------------------------------------------------------------
 
@@ -253,8 +280,14 @@ class Inference:
             if len(rhs.vertices) >= len(g.verts):
                 exceptions = tuple(Pattern.of(h) for h in graphs)
         starter = match is None
-        name = f"{'s' if starter else 'r'}{len(self.state.rules)}"
+        name = f"{'s' if starter else 'r'}{len(self.structural) + len(self.state.rules)}"
         rule = Rule(name, lhs, rhs, priority=0, weight=1.0)
+        if exceptions:
+            plan = self._restructure(g, graphs)
+            if plan is not None:
+                node.status = RULE
+                self.pending = (*plan, rule)
+                return
         idx = len(self.state.rules)
         self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, Counter(g.verts)))
         for p in sorted(set(g.verts)):
@@ -266,38 +299,92 @@ class Inference:
 
     def _forbid(self, g: Graph) -> None:
         """Tell the turning analysis what an irreducible graph can no longer hold: a left side
-        that is one whole block removes its primitives; two blocks joined by one edge remove
-        that kind of edge (blocks are glued whole, so the edge brings both blocks along)."""
-        inter = [e for e in g.edges
-                 if (g.verts[e[0]], e[1], g.verts[e[2]], e[3]) not in self.forced]
-        if not inter and len(g.verts) in self.block_sizes.get(g.verts[0], ()):
-            for p in sorted(set(g.verts)):
-                self.turns.forbid_primitive(p)
-        elif len(inter) == 1:
+        that is one whole unit removes the unit; two units joined by one edge remove that move;
+        three joined in a chain whose two joining edges leave the middle one from consecutive
+        open slots remove that move-after-move transition."""
+        places = unit_places(g, [len(b.verts) for b in self.blocks])
+        if places is None or len(g.edges) != len(g.units) - 1 + sum(
+                len(self.blocks[u].edges) for u in g.units):
+            return      # unknown units, or a left side that also closes a loop
+        inter = [e for e in g.edges if places[e[0]][0] != places[e[2]][0]]
+
+        def slot(v: int, i: int) -> tuple[int, int]:
+            k, base = places[v]
+            return g.units[k], self.turns.slot_of[g.units[k]][(v - base, i)]
+
+        if len(g.units) == 1:
+            self.turns.forbid_unit(g.units[0])
+        elif len(g.units) == 2:
             v, i, w, j = inter[0]
-            rest = tuple(e for e in g.edges if e != inter[0])
-            parts = components(len(g.verts), rest)
-            if len(parts) == 2 and all(len(c) == self.block_size[g.verts[c[0]]] for c in parts):
-                self.turns.forbid_edge(g.verts[v], i, g.verts[w], j)
-        elif len(inter) == 2:
-            rest = tuple(e for e in g.edges if e not in inter)
-            parts = components(len(g.verts), rest)
-            if len(parts) != 3 or any(len(c) != self.block_size[g.verts[c[0]]] for c in parts):
-                return
-            ends1 = {(inter[0][0], inter[0][1]), (inter[0][2], inter[0][3])}
-            ends2 = {(inter[1][0], inter[1][1]), (inter[1][2], inter[1][3])}
-            for q, j1 in ends1:
-                for q2, j2 in ends2:
-                    if q2 != q:
+            self.turns.forbid_edge(*slot(v, i), *slot(w, j))
+        elif len(g.units) == 3:
+            (v1, i1, w1, j1), (v2, i2, w2, j2) = inter
+            for q, j, a, ai in ((v1, i1, w1, j1), (w1, j1, v1, i1)):
+                for q2, j2_, c, ci in ((v2, i2, w2, j2), (w2, j2, v2, i2)):
+                    if places[q][0] != places[q2][0]:
                         continue
-                    (a, ai), = ends1 - {(q, j1)}
-                    (c, ci), = ends2 - {(q, j2)}
-                    pa, pq, pc = g.verts[a], g.verts[q], g.verts[c]
-                    n = self.ring_len[pq]
-                    if j2 == (j1 + 1) % n:     # walk a → q (slot j1), on to j2, → c
-                        self.turns.forbid_pair((pa, ai, pq, j1), (pq, j2, pc, ci))
-                    if j1 == (j2 + 1) % n:     # walk c → q (slot j2), on to j1, → a
-                        self.turns.forbid_pair((pc, ci, pq, j2), (pq, j1, pa, ai))
+                    ua, ka = slot(a, ai)
+                    m, k1 = slot(q, j)
+                    _, k2 = slot(q2, j2_)
+                    uc, kc = slot(c, ci)
+                    n = len(self.turns.rings[m])
+                    if k2 == (k1 + 1) % n:     # walk a → middle (k1), on to k2, → c
+                        self.turns.forbid_pair((ua, ka, m, k1), (m, k2, uc, kc))
+                    if k1 == (k2 + 1) % n:     # walk c → middle (k2), on to k1, → a
+                        self.turns.forbid_pair((uc, kc, m, k2), (m, k1, ua, ka))
+
+    def _restructure(self, lhs: Graph, graphs: list[Graph]) -> tuple[list[Graph], set[int]] | None:
+        """§5.4: a rule that turns one whole block X into right-side graphs that each hold X
+        once. Applied destructively to every X that no right-side graph covers, it leaves a
+        graph in which every X lies inside some right-side graph; when those graphs can claim
+        disjoint parts (below), such a graph is glued from the right-side graphs and the other
+        blocks alone. So X leaves the blocks and the right-side graphs become blocks: the
+        hierarchy restarts from them, with this rule kept (it makes no graph reducible, since
+        every graph of the new hierarchy holds X).
+
+        Claims are disjoint when X is an original block, every other block of a right-side
+        graph is an original block glued to X directly, and for each kind of block the sets of
+        its slots glued to X pairwise meet: a block claimed by two X's would then have one slot
+        glued to both."""
+        if len(lhs.units) != 1 or len(lhs.edges) != len(self.blocks[lhs.units[0]].edges):
+            return None
+        x = lhs.units[0]
+        if x not in self.original:
+            return None
+        sizes = [len(b.verts) for b in self.blocks]
+        claims: dict[int, list[frozenset]] = {}
+        new: list[Graph] = []
+        keys: set = set()
+        for h in graphs:
+            if x not in h.units:
+                continue
+            places = unit_places(h, sizes)
+            if places is None or h.units.count(x) != 1:
+                return None
+            xi = h.units.index(x)
+            glued: dict[int, set] = {}
+            for v, i, w, j in h.edges:
+                for (a, ai), (b, bi) in (((v, i), (w, j)), ((w, j), (v, i))):
+                    if places[a][0] != xi and places[b][0] == xi:
+                        glued.setdefault(places[a][0], set()).add((a - places[a][1], ai))
+            for k, u in enumerate(h.units):
+                if k == xi:
+                    continue
+                if u not in self.original or k not in glued:
+                    return None
+                claims.setdefault(u, []).append(frozenset(glued[k]))
+            key = canonical_key(h, self.ring_len)
+            if key not in keys:
+                keys.add(key)
+                new.append(h)
+        if not new:
+            return None
+        for sets in claims.values():
+            if any(not (s & t) for s in sets for t in sets):
+                return None
+        kept = [k for k in range(len(self.blocks)) if k != x]
+        original = {n for n, k in enumerate(kept) if k in self.original}
+        return [self.blocks[k] for k in kept] + new, original
 
     def _drop_holders(self, idx: int, lhs_id: int) -> None:
         """Irreducible and over-limit graphs that hold the new left side are reducible now
@@ -345,7 +432,7 @@ class Inference:
         (The claim rests on every reduction making progress; a failure here means it did not,
         and the report says so rather than claim too much.)"""
         from .verify import verify
-        grammar = Grammar(header(self.ex, True), tuple(r.rule for r in self.state.rules))
+        grammar = Grammar(header(self.ex, True), self._rules())
         res = verify(grammar, SELF_CHECK_PRIMITIVES, cap=SELF_CHECK_GRAPHS)
         if res.failed:
             self.state.limits_hit.add("self-check")
@@ -362,11 +449,16 @@ class Inference:
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
-            grammar = Grammar(header(self.ex, False), tuple(r.rule for r in self.state.rules))
-            if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g):
+            grammar = Grammar(header(self.ex, False), self._rules())
+            # Past the time limit a component simply becomes a starter, which is always sound.
+            deadline = self.t0 + self.limits.seconds
+            if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS, deadline=deadline).reduces(g):
                 continue
             node, _ = self.hier.lookup_or_add(g, self.generation, None)
             self._add_rule(node, None)
+
+    def _rules(self) -> tuple[Rule, ...]:
+        return tuple(self.structural) + tuple(r.rule for r in self.state.rules)
 
     def _result(self) -> CompileResult:
         st = self.state
@@ -380,7 +472,7 @@ class Inference:
                      if n.status == OVER or (n.status == KEPT and n.id in front)]
         limited = bool(st.limits_hit) or bool(front)
         shown = sorted(remaining, key=lambda n: n.rank)[:5]
-        rules = tuple(r.rule for r in st.rules)
+        rules = self._rules()
         report = Report(
             example=self.ex.name,
             primitives=len(self.rings),

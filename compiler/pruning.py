@@ -1,19 +1,21 @@
 """Graphs with no complete irreducible descendants (§5.6, Appendix C, companion §6.4-6.6).
 
 Every face of a complete planar graph is a closed walk that turns +1 (the outer face) or −1 (an
-inner face). A walk is a sequence of moves: a move leaves a vertex along slot (P, i) and crosses
-the edge into slot (Q, j) of a neighbour with the opposite token (a ∨ when the token left along
-is barred: the direction turns through −180°). The next move leaves Q along slot j + 1, and
-turning around Q from j to j + 1 is a ∧ when it wraps past the end of the ring. Moves are the
-nodes of the directed graph of companion §6.6 (pairs of half-edges glued together), and one move
-followed by the next is an edge weighted by the turns between them; its closed walks are the
-possible faces.
+inner face). The graphs of the hierarchy are glued from units (blocks: primitives, groups of
+them, or the right sides of a §5.4 restructuring), and a face walk through a unit is fixed by the
+unit, so the walk is a sequence of moves between units: a move leaves unit P along its open slot
+i and crosses the edge into open slot j of unit Q, with the opposite token (a ∨ when the token
+left along is barred: the direction turns through −180°). The next move leaves Q along its next
+open slot j + 1, turning by the turns that follow slot j on Q's boundary (for a primitive, one ∧
+where the ring wraps). Moves are the nodes of the directed graph of companion §6.6 (pairs of
+half-edges glued together), and one move followed by the next is an edge weighted by the turns
+between them; its closed walks are the possible faces.
 
 Rules shrink it (companion §6.6): an irreducible graph holds no left side of a rule, so a rule
-whose left side is one block removes every move touching its primitives; two blocks joined by
-one edge remove that kind of move; three blocks joined in a chain whose two joining edges leave
-the middle one from consecutive slots remove that move-after-move transition. (Only rules that
-shrink the vertex count count: see `infer._add_rule`.)
+whose left side is one unit removes every move touching it; two units joined by one edge remove
+that kind of move; three units joined in a chain whose two joining edges leave the middle one
+from consecutive open slots remove that move-after-move transition. (Only rules that shrink the
+vertex count count: see `infer._add_rule`.)
 
 The test on a graph G: the face through G's boundary gap k (from open slot h_k to h_{k+1}, net
 t_k turns) is the walk from the move that lands on h_k, through G, to the move that leaves along
@@ -33,15 +35,24 @@ import numpy as np
 
 from grammar_lang import boundary as bd
 
-from .gluing import Graph
+from .gluing import Graph, primitive_graph, unit_places
 
 INF = float("inf")
 Move = tuple[int, int, int, int]     # leave (P, i), land on (Q, j)
 
 
 class TurnAnalysis:
-    def __init__(self, rings: Sequence[Sequence[int]]):
-        self.rings = [tuple(r) for r in rings]
+    """The directed graph of moves between the open slots of units: the blocks the hierarchy is
+    glued from (primitives by default). A face walk through a block is fixed by the block, so
+    only its open slots, and the turns between them on its boundary, take part."""
+
+    def __init__(self, rings: Sequence[Sequence[int]], blocks: Sequence[Graph] | None = None):
+        if blocks is None:
+            blocks = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
+        self.sizes = [len(b.verts) for b in blocks]
+        self.slot_of = [{s: k for k, (s, _) in enumerate(b.gaps)} for b in blocks]
+        self.rings = [tuple(rings[b.verts[v]][i] for (v, i), _ in b.gaps) for b in blocks]
+        self.after = [tuple(n for _, n in b.gaps) for b in blocks]
         carriers: dict[int, list[tuple[int, int]]] = {}
         for p, r in enumerate(self.rings):
             for i, t in enumerate(r):
@@ -61,9 +72,24 @@ class TurnAnalysis:
         self.dead_pairs: set[tuple[int, int]] = set()
         self._solved = False
 
+    def unit_slots(self, g: Graph) -> list[tuple[int, int]] | None:
+        """Each open slot of g as (unit, slot of that unit), or None if g's units are unknown."""
+        places = unit_places(g, self.sizes)
+        if places is None:
+            return None
+        out = []
+        for (v, i), _ in g.gaps:
+            k, base = places[v]
+            u = g.units[k]
+            slot = self.slot_of[u].get((v - base, i))
+            if slot is None:
+                return None
+            out.append((u, slot))
+        return out
+
     # --- the rule-reduced directed graph ---------------------------------------------------
 
-    def forbid_primitive(self, p: int) -> None:
+    def forbid_unit(self, p: int) -> None:
         self.dead.update(k for k, m in enumerate(self.moves) if m[0] == p or m[2] == p)
         self._solved = False
 
@@ -86,7 +112,7 @@ class TurnAnalysis:
             if a in self.dead:
                 continue
             ring = len(self.rings[q])
-            turn = (-1 if bd.is_bar(self.rings[p][i]) else 0) + (1 if j == ring - 1 else 0)
+            turn = (-1 if bd.is_bar(self.rings[p][i]) else 0) + self.after[q][j]
             for b in self.leaving.get((q, (j + 1) % ring), ()):
                 if b not in self.dead and (a, b) not in self.dead_pairs:
                     w[a, b] = turn
@@ -123,15 +149,16 @@ class TurnAnalysis:
         """True when no complete irreducible graph has g as a part."""
         if not g.gaps or not self.moves:
             return False
+        slots = self.unit_slots(g)
+        if slots is None:
+            return False
         if not self._solved:
             self._solve()
         m = len(g.gaps)
         for k in range(m):
-            (hk, tk), (hn, _) = g.gaps[k], g.gaps[(k + 1) % m]
-            starts = [a for a in self.leaving.get((g.verts[hn[0]], hn[1]), ())
-                      if a not in self.dead]
-            ends = [b for b in self.landing.get((g.verts[hk[0]], hk[1]), ())
-                    if b not in self.dead]
+            tk = g.gaps[k][1]
+            starts = [a for a in self.leaving.get(slots[(k + 1) % m], ()) if a not in self.dead]
+            ends = [b for b in self.landing.get(slots[k], ()) if b not in self.dead]
             lo, hi, any_way = INF, -INF, False
             for a in starts:
                 for b in ends:

@@ -10,6 +10,7 @@ into components that all reduce.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -88,8 +89,12 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     return out, False
 
 
+MAX_DEPTH = 64
+
+
 class Reducer:
-    def __init__(self, grammar: Grammar, budget: int = 3000, apply_budget: float = float("inf")):
+    def __init__(self, grammar: Grammar, budget: int = 3000, apply_budget: float = float("inf"),
+                 deadline: float = float("inf")):
         self.rings = grammar.rings
         self.ring_len = [len(r) for r in self.rings]
         self.rules = []
@@ -105,9 +110,15 @@ class Reducer:
         self.apply_budget = apply_budget     # rule applications per graph (growing rules)
         self.steps = 0
         self.applied = 0
+        self.depth = 0
+        self.deadline = deadline              # time.perf_counter() value
+        self.max_verts = 0
 
     def reduces(self, g: Graph) -> bool:
         self.steps = self.applied = 0
+        # Rules that grow a graph (§5.4) could lead down an endless chain: a way down may pass
+        # through graphs up to twice the size of the start, and no deeper than MAX_DEPTH.
+        self.max_verts = 2 * len(g.verts) + 16
         ok = self._reduces(g)
         # A failure may only mean "every way down passed through a graph then in progress";
         # such failures are not final, so only successes are remembered across graphs.
@@ -121,7 +132,10 @@ class Reducer:
             return hit
         self.memo[key] = False        # in progress: a cycle back here is no way down
         self.steps += 1
-        ok = self.steps <= self.budget and self._try(g)
+        self.depth += 1
+        ok = (self.steps <= self.budget and self.depth <= MAX_DEPTH
+              and len(g.verts) <= self.max_verts and self._try(g))
+        self.depth -= 1
         self.memo[key] = ok
         return ok
 
@@ -130,7 +144,8 @@ class Reducer:
         for rule, pat in self.rules:
             for img in matches(pat, host):
                 self.applied += 1
-                if self.steps > self.budget or self.applied > self.apply_budget:
+                if (self.steps > self.budget or self.applied > self.apply_budget
+                        or time.perf_counter() > self.deadline):
                     return False      # out of budget: no further way down is tried
                 h = Host(g.verts, g.edges)
                 apply(rule.lhs, rule.rhs, img, h)

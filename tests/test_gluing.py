@@ -108,3 +108,16 @@ def test_random_sequences_keep_edges_consistent():
             assert len(set(glued)) == len(glued)
             assert sorted(glued + open_) == sorted(
                 (v, i) for v, p in enumerate(g.verts) for i in range(len(rings[p])))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, len(SETS) - 1), st.lists(st.integers(0, 10**6), min_size=1, max_size=12))
+def test_units_record_the_blocks_glued(which, choices):
+    """Each graph records its block instances: laid out in order, they cover its vertices, each
+    with the block's own primitives (so the turning analysis can find a gap's unit slot)."""
+    from compiler.gluing import unit_places
+    rings = SETS[which]
+    for g in grow(rings, choices):
+        places = unit_places(g, [1] * len(rings))
+        assert places is not None
+        assert [g.verts[base] for _, base in places] == list(g.units)

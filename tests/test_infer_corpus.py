@@ -6,7 +6,7 @@ from conftest import CORPUS, corpus_names
 from compiler.apply import side_graph
 from compiler.canon import canonical_key
 from compiler.infer import EXAMPLE_CHECK_STEPS, compile_example, example_graphs
-from compiler.verify import Reducer
+from compiler.verify import Reducer, verify
 from grammar_lang import boundary as bd
 from grammar_lang.loader import load_example
 
@@ -28,6 +28,8 @@ def test_compiles_within_default_limits(name):
     assert res.grammar.header.complete is rep.complete
     if rep.complete:
         assert not rep.limits_hit and rep.remaining == 0
+        # The claim, checked independently: every complete graph of ≤ 6 primitives reduces.
+        assert verify(res.grammar, 6).ok
     else:
         assert rep.limits_hit or rep.remaining
         assert len(rep.remaining_boundaries) == min(5, rep.remaining)
