@@ -84,28 +84,36 @@ class Schedule:
         """The level, move and match for the next step, or None when nothing applies; the flag
         says the move was refused by `screen` (the cost's coin, tossed before any search).
 
-        A screened-out move is set aside without a search. Only when no other move of the level
-        applies are the set-aside ones searched, and then the first with a match is returned
-        flagged as refused: so a level is still passed over only when none of its moves applies,
-        and the cost's refusals no longer pay for a match search each.
+        A screened-out move is set aside without a search, and moves are screened one at a
+        time, in draw order, only until one passes and matches: a step with many rules pays for
+        the coins it needs, not one per rule. Only when no other move of the level applies are
+        the set-aside ones searched, and then the first with a match is returned flagged as
+        refused: so a level is still passed over only when none of its moves applies, and the
+        cost's refusals no longer pay for a match search each.
         """
         for level in self.levels:
             if level.limit is not None and applied.get(level.priority, 0) >= level.limit:
                 continue
-            order = self._order(level, host, rng)
+            kept: list[int] = []
             refused: list[int] = []
-            if screen is not None:
-                keep = []
-                for k in order:
-                    (keep if screen(level.moves[k]) else refused).append(k)
-                order = keep
             # First cheap probes (a few random anchors per move), then exact searches, so a
             # step costs O(moves) and a level is still only passed over when nothing applies.
-            for ks, flag in ((order, False), (refused, True)):
-                for probes in (PROBES, None):
-                    found = self._draw(level, ks, host, rng, probes)
-                    if found is not None:
-                        return level, found[0], found[1], flag
+            for k in self._order(level, host, rng):
+                move = level.moves[k]
+                if screen is not None and not screen(move):
+                    refused.append(k)
+                    continue
+                kept.append(k)
+                match = find_match(host, move.pattern, rng, self.spo, PROBES)
+                if match is not None:
+                    return level, move, match, False
+            found = self._draw(level, kept, host, rng, None)
+            if found is not None:
+                return level, found[0], found[1], False
+            for probes in (PROBES, None):
+                found = self._draw(level, refused, host, rng, probes)
+                if found is not None:
+                    return level, found[0], found[1], True
         return None
 
     @staticmethod
