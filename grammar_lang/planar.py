@@ -75,15 +75,19 @@ class _Builder:
         for order, item in enumerate(self.source.paint):
             if isinstance(item, Region):
                 kind, chains = "region", [(ring, True) for ring in item.rings]
-                if all(abs(_ring_area(ring)) <= 0.0 for ring in item.rings):
-                    self.report(f"the region '{item.label}' has zero area", item.span,
-                                "a filled shape needs at least three points not on one line")
             elif isinstance(item, Stroke):
                 kind, chains = "stroke", [(item.points, item.closed)]
             elif isinstance(item, ExplicitEdge):
                 kind, chains = "explicit", [((item.p, item.q), False)]
             else:
                 raise TypeError(f"unknown paint item {item!r}")
+            if not all(abs(c) <= MAX_COORDINATE for chain, _ in chains for pt in chain for c in pt):
+                self.report(f"coordinates beyond ±{MAX_COORDINATE:g}", item.span,
+                            "scale the drawing down")
+                continue
+            if kind == "region" and all(abs(_ring_area(ring)) <= 0.0 for ring in item.rings):
+                self.report(f"the region '{item.label}' has zero area", item.span,
+                            "a filled shape needs at least three points not on one line")
             sid = len(self.items)
             self.items.append(_Source(order, kind, item))
             for chain, closed in chains:
@@ -97,9 +101,6 @@ class _Builder:
             raise error("the drawing has no edges", Span(self.source.path),
                         "draw at least one line or filled shape", source=None)
         pts = np.asarray(points, dtype=float)
-        if not np.all(np.abs(pts) <= MAX_COORDINATE):
-            raise error(f"the drawing has coordinates beyond ±{MAX_COORDINATE:g}",
-                        Span(self.source.path), "scale the drawing down")
         return pts, np.asarray(segments, dtype=np.int64)
 
     # --- building ---------------------------------------------------------------------------

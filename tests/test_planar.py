@@ -164,6 +164,17 @@ def test_explicit_edges_disagreeing_about_a_face_are_reported():
         build(ExplicitEdge((0, 0), (4, 0), "a", "b"))
 
 
+@pytest.mark.parametrize("far", [1e13, 1e200, float("inf"), float("nan")])
+def test_huge_coordinates_are_reported_at_their_shape(far, recwarn):
+    span = Span("t.gg", 2, 1)
+    with pytest.raises(UserError) as info:
+        build(Region((rect(0, 0, 4, 4),), "a"),
+              Region((((0, 0), (far, 0), (far, far)),), "b", span=span))
+    (d,) = info.value.diagnostics
+    assert d.span == span and "beyond" in d.message
+    assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
+
+
 def test_custom_exterior_name():
     g = build(Region((rect(0, 0, 1, 1),), "land"), exterior="sea")
     assert {frozenset(e[2:4]) for e in g.edges} == {frozenset(("land", "sea"))}

@@ -7,18 +7,15 @@ fast sample of the corpus in the test suite, every drawing checked by the verifi
 from __future__ import annotations
 
 from functools import lru_cache
-from pathlib import Path
-
 import pytest
 
 from runtime.costs import SizeCost
 from runtime.generate import Engine
 from runtime.verifier import check_drawing
 
-CORPUS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "examples"
-SAMPLE = ["angle.svg", "branches.svg", "a.svg", "curl.svg", "square-filled.svg", "l.svg"]
+from conftest import CORPUS
 
-pytestmark = pytest.mark.skipif(not CORPUS.is_dir(), reason="corpus not available")
+SAMPLE = ["angle.svg", "branches.svg", "a.svg", "curl.svg", "square-filled.svg", "l.svg"]
 
 
 @lru_cache(maxsize=None)
