@@ -11,7 +11,10 @@ fresh place for every sample); the projection is a weighted least
 squares step, so old vertices move least and new ones most. Projecting a random point onto the
 space samples it as the null-space form does, without forming K. Samples whose lengths break
 their class (min/max, fixed, tile multiples, rigid), whose edges cross or touch others, or
-whose vertices coincide are rejected: J samples per system. When the system is inconsistent
+whose vertices coincide are rejected: J samples per system. A sample that crosses or touches
+old parts makes the next one SHRINK times smaller (target lengths and scatter), so that a
+change squeezed between old vertices finds room; any other failure (say, an edge of a triangle
+below its class's minimum) makes it larger again, up to the local scale. When the system is inconsistent
 (over-constrained), fixes some length outside its class whatever the sample, or J samples
 fail, one more vertex next to a free one is freed: I rounds.
 
@@ -33,6 +36,9 @@ from .spatial import seg_near
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
 NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
+SHRINK = 0.75
+# Failures that a smaller sample may avoid (a part squeezed between old vertices).
+CROWDED = ("crossing", "coincident vertices")
 
 
 @dataclass(frozen=True)
@@ -60,6 +66,7 @@ class Solver:
         self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
         self.clearance = max(self.clearance, 1e-9 * u)
         self.failures: dict[str, int] = {}
+        self.last_failure = ""
         self.unique = False
         # New edges between two old vertices (a wire replaced): constraints from the start.
         self.bridges = [(a, b) for a, b in change.glue
@@ -124,6 +131,7 @@ class Solver:
 
     def _fail(self, why: str) -> None:
         self.failures[why] = self.failures.get(why, 0) + 1
+        self.last_failure = why
 
     def placements(self) -> Iterator[Placement]:
         """Candidate placements that pass every local test, at most I·J of them."""
@@ -139,9 +147,12 @@ class Solver:
             elif system[0] is None:
                 self._fail(system[1])
             else:
+                f = 1.0
                 for _ in range(1 if self.unique else self.J):
-                    pos = self._sample(free, *system)
-                    if pos is not None:
+                    pos = self._sample(free, *system, f)
+                    if pos is None:
+                        f = f * SHRINK if self.last_failure in CROWDED else min(1.0, f / SHRINK)
+                    else:
                         freed = tuple(v for v in free if v in host.prim)
                         yield Placement(pos, freed, rnd)
             if rnd == self.I or not self._free_one(free):
@@ -255,18 +266,26 @@ class Solver:
                 pv, pw = host.pos[v], host.pos[w]
                 mid[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
             else:
-                a, bb = max(lo, 0.5 * u), min(hi, 1.5 * u)
-                if a > bb:
-                    a, bb = lo, hi
+                a = self._draw_range(lo, hi, SHRINK ** (self.J - 1))[0]
+                bb = self._draw_range(lo, hi, 1.0)[1]
                 mid[2 * nF + e], half[2 * nF + e] = 0.5 * (a + bb), 0.5 * (bb - a)
         return mid, half
 
-    def _targets(self, free, edges) -> np.ndarray:
+    def _draw_range(self, lo: float, hi: float, f: float) -> tuple[float, float]:
+        """Where a new edge's target length is drawn: its class's range near the local scale
+        (times f), or the whole class when that misses it; when a shrunk range falls below
+        the class, its shortest length."""
+        a, bb = max(lo, 0.5 * self.scale * f), min(hi, 1.5 * self.scale * f)
+        if a > bb:
+            return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
+        return a, bb
+
+    def _targets(self, free, edges, f: float = 1.0) -> np.ndarray:
         host, t, rng = self.host, self.host.t, self.rng
         u = self.scale
         nF = len(free)
         x = np.empty(2 * nF + len(edges))
-        noise = rng.normal(0.0, 0.5 * u, size=2 * nF)
+        noise = rng.normal(0.0, 0.5 * u * f, size=2 * nF)
         cx, cy = self.center()
         for k, v in enumerate(free):
             p = host.pos.get(v)
@@ -284,15 +303,13 @@ class Solver:
                 pv, pw = host.pos[v], host.pos[w]
                 x[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
             else:
-                a, bb = max(lo, 0.5 * u), min(hi, 1.5 * u)
-                if a > bb:
-                    a, bb = lo, hi
+                a, bb = self._draw_range(lo, hi, f)
                 x[2 * nF + e] = a + (bb - a) * draws[e]
         return x
 
-    def _sample(self, free, edges, A, b, scale, Mp) -> dict[int, Point] | None:
+    def _sample(self, free, edges, A, b, scale, Mp, f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
-        target = self._targets(free, edges)
+        target = self._targets(free, edges, f)
         x = target + scale * (Mp @ (b - A @ target))
         nF = len(free)
         s = x[2 * nF:]
