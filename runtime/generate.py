@@ -22,6 +22,7 @@ from grammar_lang.rules import Grammar
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .geometry import I_ROUNDS, J_SAMPLES, Solver
 from .host import Host, Point
+from .landing import outer_label, sectors, spot
 from .matching import Match, iter_matches
 from .rewrite import Change, DirectedRule, commit, plan
 from .schedule import Schedule
@@ -76,6 +77,7 @@ class Engine:
         self.temperature = temperature
         self.I, self.J = I, J
         self._deltas: dict[int, tuple] = {}
+        self._outer: dict[int, str | None] = {}     # move → outer label of what it creates
         self.reset(seed)
 
     def reset(self, seed: int) -> None:
@@ -236,11 +238,6 @@ class Engine:
         return rec
 
     # --- edits outside the rules (the REPL's reset and open) ----------------------------------
-    def reseed(self, seed: int) -> None:
-        """A fresh random generator; the drawing and its history stay."""
-        self.seed = seed
-        self.rng = np.random.default_rng(seed)
-
     def record_edit(self, name: str, ops: list[tuple]) -> StepRecord:
         """File host operations made outside any rule (journaled by the caller) as one step,
         so that undo and redo treat it like a rule application. It counts at no level."""
@@ -303,6 +300,11 @@ class Engine:
         n = len(host)
         if n == 0:
             return (0.0, 0.0)
+        label = self._landing_label(change)
+        if label is not None and label != host.t.exterior:
+            p = spot(host, self.rng, self._corners.get(label, []), 0.5 * host.t.unit)
+            if p is not None:
+                return p
         # A new component: near a random vertex, a few units away in a random direction.
         k = int(self.rng.integers(n))
         for lst in host.by_prim:
@@ -313,6 +315,20 @@ class Engine:
         ang = float(self.rng.random()) * 2 * math.pi
         r = host.t.unit * (1.0 + 2.0 * float(self.rng.random()))
         return (base[0] + r * math.cos(ang), base[1] + r * math.sin(ang))
+
+    def _landing_label(self, change: Change) -> str | None:
+        key = id(change.rule)
+        if key not in self._outer:
+            prim = dict(change.new)
+            self._outer[key] = outer_label(self.host.t, prim,
+                                           lambda v, i: change.partner_after(self.host, v, i))
+        return self._outer[key]
+
+    @property
+    def _corners(self) -> dict[str, list]:
+        if not hasattr(self, "_corner_table"):
+            self._corner_table = sectors(self.host.t)
+        return self._corner_table
 
     def _faces_ok(self, placed: dict[int, Point], pts: list[Point]) -> bool:
         host = self.host
