@@ -36,6 +36,8 @@ def build_parser() -> ArgumentParser:
     p.add_argument("file", help="the rule file (.ggr)")
     p.add_argument("--max-primitives", type=int, default=8, metavar="N",
                    help="check every complete graph of at most N primitives (default 8)")
+    p.add_argument("--seconds", type=float, default=None, metavar="S",
+                   help="stop after S seconds and report a partial check (default: no limit)")
     common_flags(p)
     return parser
 

@@ -86,17 +86,22 @@ def run_verify(args) -> int:
     err = Console(stderr=True, highlight=False, soft_wrap=True)
     if args.max_primitives < 1:
         raise error("--max-primitives must be at least 1", Span(args.file))
+    if args.seconds is not None and not args.seconds > 0:
+        raise error("--seconds must be positive", Span(args.file), "leave it out for no limit")
     bar, task = _progress_bar(err, f"verifying {Path(args.file).name}")
 
     def progress(done: int, total: int) -> None:
-        if bar is not None:
-            bar.update(task, total=total, completed=done, info=f"{done}/{total} graphs")
+        bar.update(task, total=total, completed=done, info=f"{done}/{total} graphs reduced")
+
+    def enumerating(seen: int, size: int) -> None:
+        bar.update(task, info=f"enumerating: {seen} graphs seen, now {size} primitives")
 
     if bar is not None:
         with bar:
-            res = verify(grammar, args.max_primitives, progress)
+            res = verify(grammar, args.max_primitives, progress, seconds=args.seconds,
+                         enumerating=enumerating)
     else:
-        res = verify(grammar, args.max_primitives)
+        res = verify(grammar, args.max_primitives, seconds=args.seconds)
     names = [p.name for p in grammar.header.primitives]
     for name in res.skipped_rules:
         err.print(f"note: rule '{name}' has a disconnected left side; verify does not apply it",
@@ -104,9 +109,14 @@ def run_verify(args) -> int:
     if res.enumeration_capped:
         err.print("note: stopped enumerating at the graph cap; lower --max-primitives for a "
                   "complete check", markup=False)
+    elif res.stopped:
+        err.print(f"note: stopped at the {args.seconds:g} s time limit after {res.checked} of "
+                  f"{res.enumerated} complete graphs found so far; this is not a complete check "
+                  "(lower --max-primitives or raise --seconds)", markup=False)
     out.print(f"checked {res.checked} complete graphs with at most {args.max_primitives} "
               f"primitives: {res.checked - len(res.failed)} reduce to ∅, "
-              f"{len(res.failed)} failed", markup=False)
+              f"{len(res.failed)} failed" + (f" ({res.stopped}: partial)" if res.stopped else ""),
+              markup=False)
     for g in res.failed[:20]:
         prims = ", ".join(names[p] for p in g.verts)
         out.print(f"  failed: {len(g.verts)} vertices [{prims}], edges {list(g.edges)}",

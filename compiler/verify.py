@@ -26,18 +26,26 @@ from .occurrence import Host, Pattern, matches
 class VerifyResult:
     checked: int = 0
     failed: list[Graph] = field(default_factory=list)
-    enumeration_capped: bool = False
+    stopped: str = ""               # why the check is partial: "graph cap", "time limit" or ""
     skipped_rules: list[str] = field(default_factory=list)
+    enumerated: int = 0             # complete graphs found (all checked unless stopped)
 
     @property
     def ok(self) -> bool:
         return not self.failed
 
+    @property
+    def enumeration_capped(self) -> bool:
+        return self.stopped == "graph cap"
+
 
 def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool = True,
-                    cap: int = 200000) -> tuple[list[Graph], bool]:
-    """Every complete connected graph with at most `max_prims` vertices (and whether the
-    enumeration stopped at `cap` graphs)."""
+                    cap: int = 200000, deadline: float | None = None,
+                    progress: Callable[[int, int], None] | None = None,
+                    ) -> tuple[list[Graph], str]:
+    """Every complete connected graph with at most `max_prims` vertices, and why the
+    enumeration stopped early ("graph cap" after `cap` graphs, "time limit" at `deadline`, a
+    `time.perf_counter()` value), or "". `progress(graphs seen, vertices)` after each size."""
     ring_len = [len(r) for r in rings]
     prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
     slots = block_slots(prims, rings)
@@ -75,6 +83,8 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     while frontier:
         nxt: list[Graph] = []
         for g in frontier:
+            if deadline is not None and time.perf_counter() > deadline:
+                return out, "time limit"
             for kind, child, _ in children(g, prims, rings, loops, slots):
                 if len(child.verts) > max_prims or too_big(child):
                     continue
@@ -83,10 +93,12 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
                     continue
                 seen.add(k)
                 if len(seen) > cap:
-                    return out, True
+                    return out, "graph cap"
                 (out if child.is_complete else nxt).append(child)
         frontier = nxt
-    return out, False
+        if progress and frontier:
+            progress(len(seen), len(frontier[0].verts))
+    return out, ""
 
 
 MAX_DEPTH = 64
@@ -168,12 +180,19 @@ def _open(g: Graph, ring_len) -> bool:
 
 
 def verify(grammar: Grammar, max_prims: int = 10, progress: Callable[[int, int], None] | None = None,
-           cap: int = 200000) -> VerifyResult:
+           cap: int = 200000, seconds: float | None = None,
+           enumerating: Callable[[int, int], None] | None = None) -> VerifyResult:
+    """Reduce every complete graph of at most `max_prims` primitives; with `seconds`, stop
+    (enumerating or reducing) when they run out and say so in `stopped`."""
+    deadline = None if seconds is None else time.perf_counter() + seconds
     loops = not grammar.header.options.no_loops
-    graphs, capped = complete_graphs(grammar.rings, max_prims, loops, cap)
+    graphs, stopped = complete_graphs(grammar.rings, max_prims, loops, cap, deadline, enumerating)
     red = Reducer(grammar)
-    res = VerifyResult(enumeration_capped=capped, skipped_rules=red.skipped)
+    res = VerifyResult(stopped=stopped, skipped_rules=red.skipped, enumerated=len(graphs))
     for n, g in enumerate(sorted(graphs, key=lambda g: (len(g.verts), g.verts, g.edges))):
+        if deadline is not None and time.perf_counter() > deadline:
+            res.stopped = "time limit"
+            break
         res.checked += 1
         if not red.reduces(g):
             res.failed.append(g)

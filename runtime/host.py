@@ -14,7 +14,7 @@ Fresh ids come from a counter and are never reused.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass

@@ -78,7 +78,7 @@ def test_impossible_graph_is_pruned_in_the_hierarchy(name):
     steps, _ = CASES[name]
     ex = load_example(DATA / f"{name}.gg")
     inf = Inference(ex, group=False)
-    res = inf.run()
+    inf.run()
     g = _chain(ex, steps)
     hit = inf.hier.index.get(canonical_key(g, inf.ring_len))
     # Without grouping the hierarchy grows the graph primitive by primitive, meets it, and

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from grammar_lang.ggr_emit import emit_ggr
 from runtime.costs import NoCost, SizeCost
 from runtime.generate import Engine
-from runtime.matching import Pattern, find_match, iter_matches
+from runtime.matching import find_match, iter_matches
 from runtime.verifier import check_drawing
 
 sys.path.insert(0, str(Path(__file__).parent))

@@ -7,7 +7,6 @@ from hand_examples import RECTANGLE, make
 from compiler.cli import main
 from compiler.infer import compile_example
 from compiler.verify import complete_graphs, verify
-from grammar_lang.loader import load_example
 
 
 def test_enumerates_rectangles_and_their_composites():
@@ -77,3 +76,21 @@ def test_a_match_never_closes_wires_into_a_loop_without_vertices():
             assert len(cut.gaps) == 2
             assert contains(Pattern.of(cut), host)
             assert not contains(Pattern.of(cut, ((0, 1),)), host)
+
+
+def test_a_time_limit_gives_an_honest_partial_check(tmp_path, capsys):
+    res = compile_example(make(RECTANGLE))
+    whole = verify(res.grammar, 8)
+    assert not whole.stopped and whole.checked == whole.enumerated > 3
+    # A limit already spent: nothing is claimed beyond what was checked.
+    part = verify(res.grammar, 8, seconds=1e-9)
+    assert part.stopped == "time limit" and part.checked < whole.checked and part.ok
+    # The command says the check is partial, and refuses a limit that is not positive.
+    out = tmp_path / "sq.ggr"
+    assert main(["compile", str(CORPUS / "square-hollow.svg"), "-o", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["verify", str(out), "--seconds", "1e-9"]) == 0
+    got = capsys.readouterr()
+    assert "partial" in got.out and "not a complete check" in got.err
+    assert main(["verify", str(out), "--seconds", "0"]) == 2
+    assert "must be positive" in capsys.readouterr().err
