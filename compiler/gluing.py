@@ -14,7 +14,7 @@ rules of §4.2 become small arithmetic on them:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Iterator, Sequence
+from typing import Callable, Iterator, Sequence
 
 from grammar_lang import boundary as bd
 from grammar_lang.graph import Side
@@ -143,10 +143,13 @@ def loop_glue(g: Graph, k: int) -> Graph:
 
 
 def children(g: Graph, blocks: Sequence[Graph], rings, allow_loops: bool = True,
-             by_token: dict[int, list[tuple[int, Slot]]] | None = None
+             by_token: dict[int, list[tuple[int, Slot]]] | None = None,
+             admit: Callable[[Slot, int, Slot], bool] | None = None,
              ) -> Iterator[tuple[str, Graph, tuple[int, ...]]]:
     """Every graph one gluing away from `g`: loop gluings of consecutive open slots, then branch
-    gluings of each open slot with each block. Yields (kind, child, new vertex ids)."""
+    gluings of each open slot with each block (only those `admit(slot, block, block slot)`
+    lets through, when given: a filter that is cheaper than building the child). Yields (kind,
+    child, new vertex ids)."""
     if allow_loops:
         for k in range(len(g.gaps)):
             if loop_gluable(g, k, rings):
@@ -158,6 +161,8 @@ def children(g: Graph, blocks: Sequence[Graph], rings, allow_loops: bool = True,
     for s, _ in g.gaps:
         want = bd.opposite(rings[g.verts[s[0]]][s[1]])
         for b, t in by_token.get(want, ()):
+            if admit is not None and not admit(s, b, t):
+                continue
             h = blocks[b]
             yield ("branch", branch_glue(g, s, h, t, rings, b),
                    tuple(range(n, n + len(h.verts))))

@@ -18,7 +18,7 @@ from grammar_lang.rules import Grammar
 
 from .apply import apply, side_graph, wired_pairs
 from .canon import Key, canonical_key, split
-from .gluing import Graph, block_slots, children, primitive_graph
+from .gluing import Graph, Slot, block_slots, children, primitive_graph
 from .occurrence import Host, Pattern, matches
 
 
@@ -42,10 +42,12 @@ class VerifyResult:
 def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool = True,
                     cap: int = 200000, deadline: float | None = None,
                     progress: Callable[[int, int], None] | None = None,
-                    ) -> tuple[list[Graph], str]:
+                    prefilter: bool = True) -> tuple[list[Graph], str]:
     """Every complete connected graph with at most `max_prims` vertices, and why the
     enumeration stopped early ("graph cap" after `cap` graphs, "time limit" at `deadline`, a
-    `time.perf_counter()` value), or "". `progress(graphs seen, vertices)` after each size."""
+    `time.perf_counter()` value), or "". `progress(graphs seen, vertices)` after each size.
+    `prefilter` applies the size bound to a branch gluing before its child is built (the
+    same children are kept either way; without it is only for testing that)."""
     ring_len = [len(r) for r in rings]
     prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
     slots = block_slots(prims, rings)
@@ -63,13 +65,17 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
             mult[t] = max(mult.get(t, 0), r.count(t))
     widest = max((len(r) for r in rings), default=1) or 1
 
-    def too_big(g: Graph) -> bool:
-        """A lower bound on the vertices still needed: open half-edges of token t beyond the
-        open ones of token t̄ must each meet a new vertex's t̄ slot."""
+    def open_counts(g: Graph) -> dict[int, int]:
         count: dict[int, int] = {}
         for (v, i), _ in g.gaps:
             t = rings[g.verts[v]][i]
             count[t] = count.get(t, 0) + 1
+        return count
+
+    def too_big(n: int, count: dict[int, int]) -> bool:
+        """A lower bound on the vertices still needed, with `n` vertices and these open
+        half-edges: those of token t beyond the open ones of token t̄ must each meet a new
+        vertex's t̄ slot."""
         need, total = 0, 0
         for t, c in count.items():
             extra = c - count.get(t ^ 1, 0)
@@ -78,15 +84,31 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
                     return True
                 need = max(need, -(-extra // mult[t ^ 1]))
                 total += extra
-        return len(g.verts) + max(need, -(-total // widest)) > max_prims
+        return n + max(need, -(-total // widest)) > max_prims
+
+    prim_open = [open_counts(p) for p in prims]
+
+    def admit_for(g: Graph) -> Callable[[Slot, int, Slot], bool]:
+        """The bound applied to a branch gluing before the child is built."""
+        base, n = open_counts(g), len(g.verts)
+
+        def admit(s: Slot, b: int, t: Slot) -> bool:
+            count = dict(base)
+            for tok, c in prim_open[b].items():
+                count[tok] = count.get(tok, 0) + c
+            for tok in (rings[g.verts[s[0]]][s[1]], rings[b][t[1]]):
+                count[tok] -= 1
+            return not too_big(n + 1, count)
+        return admit
 
     while frontier:
         nxt: list[Graph] = []
         for g in frontier:
             if deadline is not None and time.perf_counter() > deadline:
                 return out, "time limit"
-            for kind, child, _ in children(g, prims, rings, loops, slots):
-                if len(child.verts) > max_prims or too_big(child):
+            for kind, child, _ in children(g, prims, rings, loops, slots,
+                                           admit_for(g) if prefilter else None):
+                if len(child.verts) > max_prims or too_big(len(child.verts), open_counts(child)):
                     continue
                 k = canonical_key(child, ring_len)
                 if k in seen:

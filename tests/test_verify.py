@@ -2,11 +2,15 @@
 
 from dataclasses import replace
 
+import pytest
+
 from conftest import CORPUS
 from hand_examples import RECTANGLE, make
 from compiler.cli import main
 from compiler.infer import compile_example
+from compiler.canon import canonical_key
 from compiler.verify import complete_graphs, verify
+from grammar_lang.loader import load_example
 
 
 def test_enumerates_rectangles_and_their_composites():
@@ -94,3 +98,15 @@ def test_a_time_limit_gives_an_honest_partial_check(tmp_path, capsys):
     assert "partial" in got.out and "not a complete check" in got.err
     assert main(["verify", str(out), "--seconds", "0"]) == 2
     assert "must be positive" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name,n", [("star-crossing", 4), ("triangle-complex", 5),
+                                     ("x-box-square", 4), ("h-complex", 5), ("square-hollow", 8)])
+def test_the_size_prefilter_keeps_exactly_the_same_graphs(name, n):
+    rings = [p.ring for p in load_example(CORPUS / f"{name}.svg").primitives]
+    keys = []
+    for prefilter in (True, False):
+        graphs, stopped = complete_graphs(rings, n, prefilter=prefilter)
+        assert not stopped
+        keys.append(sorted(canonical_key(g, [len(r) for r in rings]) for g in graphs))
+    assert keys[0] == keys[1]
