@@ -106,9 +106,14 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
         for g in frontier:
             if deadline is not None and time.perf_counter() > deadline:
                 return out, "time limit"
-            for kind, child, _ in children(g, prims, rings, loops, slots,
-                                           admit_for(g) if prefilter else None):
-                if len(child.verts) > max_prims or too_big(len(child.verts), open_counts(child)):
+            admit = admit_for(g) if prefilter else None
+            for kind, child, _ in children(g, prims, rings, loops, slots, admit):
+                # An admitted branch child already passed the bound; a loop gluing drops a
+                # t, t̄ pair, which leaves the bound as it was for the parent, but a parent
+                # may be a primitive that never met it.
+                if (admit is None or kind == "loop") and (
+                        len(child.verts) > max_prims
+                        or too_big(len(child.verts), open_counts(child))):
                     continue
                 k = canonical_key(child, ring_len)
                 if k in seen:

@@ -21,7 +21,7 @@ from grammar_lang.rules import Grammar
 
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .geometry import I_ROUNDS, J_SAMPLES, Solver
-from .host import Host, Point
+from .host import Host, Point, Tables
 from .landing import outer_label, sectors, spot
 from .matching import Match, iter_matches
 from .rewrite import Change, DirectedRule, commit, plan
@@ -78,12 +78,14 @@ class Engine:
         self.I, self.J = I, J
         self._deltas: dict[int, tuple] = {}
         self._outer: dict[int, str | None] = {}     # move → outer label of what it creates
+        self.tables = Tables.build(grammar.header)
+        self._corners = sectors(self.tables)
         self.reset(seed)
 
     def reset(self, seed: int) -> None:
         self.seed = seed
         self.rng = np.random.default_rng(seed)
-        self.host = Host(self.grammar.header)
+        self.host = Host(self.grammar.header, self.tables)
         self.history: list[StepRecord] = []
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}
@@ -320,15 +322,9 @@ class Engine:
         key = id(change.rule)
         if key not in self._outer:
             prim = dict(change.new)
-            self._outer[key] = outer_label(self.host.t, prim,
+            self._outer[key] = outer_label(self.tables, prim,
                                            lambda v, i: change.partner_after(self.host, v, i))
         return self._outer[key]
-
-    @property
-    def _corners(self) -> dict[str, list]:
-        if not hasattr(self, "_corner_table"):
-            self._corner_table = sectors(self.host.t)
-        return self._corner_table
 
     def _faces_ok(self, placed: dict[int, Point], pts: list[Point]) -> bool:
         host = self.host

@@ -14,9 +14,9 @@ their class (min/max, fixed, tile multiples, rigid), whose edges cross or touch 
 whose vertices coincide are rejected: J samples per system. A sample that crosses or touches
 old parts makes the next one SHRINK times smaller (target lengths and scatter), so that a
 change squeezed between old vertices finds room; any other failure (say, an edge of a triangle
-below its class's minimum) makes it larger again, up to the local scale. When the system is inconsistent
-(over-constrained), fixes some length outside its class whatever the sample, or J samples
-fail, one more vertex next to a free one is freed: I rounds.
+below its class's minimum) makes it larger again, up to the local scale. When the system is
+inconsistent (over-constrained), fixes some length outside its class whatever the sample, or
+J samples fail, one more vertex next to a free one is freed: I rounds.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import pytest
 
 from compiler.infer import compile_example
@@ -24,16 +22,11 @@ polygon glass rect (60, 20) (80, 40)
 """
 
 
-@lru_cache(maxsize=None)
-def _wall(tmp):
-    path = tmp / "wall.gg"
-    path.write_text(WALL, encoding="utf-8")
-    return compile_example(load_example(path)).grammar
-
-
 @pytest.fixture(scope="module")
 def wall(tmp_path_factory):
-    return _wall(tmp_path_factory.mktemp("landing"))
+    path = tmp_path_factory.mktemp("landing") / "wall.gg"
+    path.write_text(WALL, encoding="utf-8")
+    return compile_example(load_example(path)).grammar
 
 
 def _created(engine, move):
