@@ -21,6 +21,9 @@ from .planar_noding import NodingError, cluster, node
 from .source import DEFAULT_CLASS, ExampleGraph, ExampleSource, ExplicitEdge, Region, Stroke
 
 MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the bounding-box diagonal
+# Coordinates are written rounded to 9 decimals, so points nearer than this would become one
+# point on output while staying two vertices: the merge distance never goes below it.
+RESOLUTION = 1e-8
 MAX_DIAGNOSTICS = 20
 MAX_COORDINATE = 1e12     # beyond this, squared lengths lose every digit the geometry needs
 
@@ -36,9 +39,9 @@ class _Source:
 
 def merge_distance(source: ExampleSource, points: np.ndarray) -> float:
     if source.options.merge_distance is not None:
-        return max(0.0, float(source.options.merge_distance))
+        return max(RESOLUTION, float(source.options.merge_distance))
     extent = points.max(axis=0) - points.min(axis=0)
-    return MERGE_FRACTION * float(np.hypot(*extent))
+    return max(RESOLUTION, MERGE_FRACTION * float(np.hypot(*extent)))
 
 
 def build_planar_graph(source: ExampleSource) -> ExampleGraph:
