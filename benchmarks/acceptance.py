@@ -21,6 +21,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
+
+pin_blas_threads()
+
 from grammar_lang.diagnostics import UserError  # noqa: E402
 from runtime.costs import SizeCost  # noqa: E402
 from runtime.generate import Engine  # noqa: E402

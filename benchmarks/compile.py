@@ -18,6 +18,10 @@ ROOT = Path(__file__).resolve().parent.parent
 CORPUS = Path(os.environ.get("GG_CORPUS", ROOT.parent / "shared" / "corpus" / "examples"))
 sys.path.insert(0, str(ROOT))
 
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
+
+pin_blas_threads()
+
 from compiler.infer import compile_example  # noqa: E402
 from grammar_lang.loader import load_example  # noqa: E402
 

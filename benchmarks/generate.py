@@ -18,6 +18,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
+
+pin_blas_threads()
+
 from runtime.costs import SizeCost  # noqa: E402
 from runtime.generate import Engine  # noqa: E402
 from runtime.run_cmd import load_grammar  # noqa: E402

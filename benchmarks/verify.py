@@ -17,6 +17,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
+
+pin_blas_threads()
+
 from grammar_lang.loader import load_example  # noqa: E402
 from runtime.drawing import DEdge, Drawing, DVertex, drawing_from_example  # noqa: E402
 from runtime.svg_out import render_svg  # noqa: E402

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import ArgumentParser, common_flags, run
 
 
@@ -44,6 +45,7 @@ def build_parser() -> ArgumentParser:
 
 def _main(argv: Sequence[str]) -> int:
     args = build_parser().parse_args(argv)
+    pin_blas_threads()
     if args.command in ("check", "primitives"):
         from . import inspect_cmd
         return inspect_cmd.run(args)

@@ -185,6 +185,8 @@ class Inference:
                           len(self.structural) + len(self.state.rules))
 
     def _out_of_time(self) -> bool:
+        if self.limits.seconds is None:
+            return False
         if time.perf_counter() - self.t0 > self.limits.seconds * HIERARCHY_SHARE:
             self.state.limits_hit.add("time")
             return True
@@ -451,7 +453,8 @@ class Inference:
                 continue      # the option forbids loops: a drawing with a cycle is no output
             grammar = Grammar(header(self.ex, False), self._rules())
             # Past the time limit a component simply becomes a starter, which is always sound.
-            deadline = self.t0 + self.limits.seconds
+            deadline = float("inf") if self.limits.seconds is None \
+                else self.t0 + self.limits.seconds
             if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS, deadline=deadline).reduces(g):
                 continue
             node, _ = self.hier.lookup_or_add(g, self.generation, None)

@@ -210,7 +210,7 @@ class _Resolver:
         limits = Limits(generations=li.get("generations", lim.generations),
                         half_edges=li.get("half-edges", lim.half_edges),
                         graphs=li.get("graphs", lim.graphs),
-                        seconds=float(li.get("time", lim.seconds)))
+                        seconds=float(li["time"]) if "time" in li else lim.seconds)
         return Options(angle_tolerance=float(o.get("angle-tolerance", base.angle_tolerance)),
                        snap_angle=float(o.get("snap-angle", base.snap_angle)),
                        merge_distance=o.get("merge-distance", base.merge_distance),

@@ -92,7 +92,8 @@ LIMITS = {
                                          f"(default {_L.half_edges})"),
     "graphs": Field("int", 1, 10**9, doc="most graphs in the hierarchy "
                                           f"(default {_L.graphs})"),
-    "time": _positive("seconds", f"time budget of the inference (default {_L.seconds:g} s)"),
+    "time": _positive("seconds", "time budget of the inference (default: none; a time "
+                                 "limit makes the rules depend on the machine's speed)"),
 }
 CLASS = {
     "min": Field("length", 0, doc=f"shortest length (default {EdgeClass.DEFAULT_MIN:g} × unit)"),

@@ -56,8 +56,9 @@ def _header(h: Header, names: list[str]) -> list[str]:
     out.append(f"status {status}")
     out.append("options " + _options(h.options))
     lim = h.options.limits
+    seconds = "" if lim.seconds is None else f" seconds={num(lim.seconds)}"
     out.append(f"limits generations={lim.generations} half_edges={lim.half_edges} "
-               f"graphs={lim.graphs} seconds={num(lim.seconds)}")
+               f"graphs={lim.graphs}{seconds}")
     out.append(f"unit {num(h.unit)}")
     out.append("")
     out.append(f"exterior {name(h.exterior)}")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import ArgumentParser, common_flags, run
 
 
@@ -35,9 +36,11 @@ def build_parser() -> ArgumentParser:
 def _main(argv: Sequence[str]) -> int:
     if argv and argv[0] == "check":
         args = build_check_parser().parse_args(argv[1:])
+        pin_blas_threads()
         from .verifier import check_command
         return check_command(args.example, args.drawing, args.tolerance, 0 if args.all else 50)
     args = build_parser().parse_args(argv)
+    pin_blas_threads()
     if args.repl:
         from .repl import repl_command
         return repl_command(args)

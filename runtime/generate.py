@@ -20,7 +20,7 @@ import numpy as np
 from grammar_lang.rules import Grammar
 
 from .costs import Cost, NoCost, Stats, metropolis_accepts
-from .geometry import I_ROUNDS, J_SAMPLES, Solver
+from .geometry import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from .host import Host, Point, Tables
 from .landing import outer_label, sectors, spot
 from .matching import Match, iter_matches
@@ -80,6 +80,7 @@ class Engine:
         self._outer: dict[int, str | None] = {}     # move → outer label of what it creates
         self.tables = Tables.build(grammar.header)
         self._corners = sectors(self.tables)
+        self.systems = SystemCache()       # factorisations by system shape, across steps
         self.reset(seed)
 
     def reset(self, seed: int) -> None:
@@ -198,7 +199,8 @@ class Engine:
         # A free-standing new component may go anywhere: a fresh place for every sample.
         floating = self._floating(change)
         center = (lambda: self._center(change)) if floating else (lambda: fixed)
-        solver = Solver(host, change, self.rng, center, self.I, self.J, floating)
+        solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
+                        self.systems)
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():

@@ -51,13 +51,13 @@ class Placement:
 class Solver:
     def __init__(self, host: Host, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
-                 floating: bool = False):
+                 floating: bool = False, cache: SystemCache | None = None):
         self.host, self.change, self.rng = host, change, rng
+        self.cache = SystemCache() if cache is None else cache
         self.center, self.I, self.J = center, I, J
         # Where new vertices are aimed, for the doomed-round test; a floating component's
         # centre varies per sample, but only by a translation, which moves no length.
         self._box_centre = (0.0, 0.0) if floating else center()
-        self._centre_spread = 0.0
         self.new_prim = dict(change.new)
         self.removed = set(change.removed)
         self.aim = self._aims()
@@ -148,8 +148,9 @@ class Solver:
                 self._fail(system[1])
             else:
                 f = 1.0
+                rd = self._round(free, system[0])
                 for _ in range(1 if self.unique else self.J):
-                    pos = self._sample(free, *system, f)
+                    pos = self._sample(free, *system, rd, f)
                     if pos is None:
                         f = f * SHRINK if self.last_failure in CROWDED else min(1.0, f / SHRINK)
                     else:
@@ -185,46 +186,24 @@ class Solver:
             if v not in idx and w not in idx:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
-        nF, nE = len(free), len(edges)
-        nfix = sum(1 for e in edges if t.lengths[e[5]][2] is not None)
-        A = np.zeros((2 * nE + nfix, 2 * nF + nE))
-        b = np.zeros(2 * nE + nfix)
-        r = 2 * nE
-        for e, (v, i, w, j, d, lab) in enumerate(edges):
-            for c in (0, 1):
-                row = 2 * e + c
-                if w in idx:
-                    A[row, 2 * idx[w] + c] += 1.0
-                else:
-                    b[row] -= host.pos[w][c]
-                if v in idx:
-                    A[row, 2 * idx[v] + c] -= 1.0
-                else:
-                    b[row] += host.pos[v][c]
-                A[row, 2 * nF + e] = -d[c]
-            fixed = t.lengths[lab][2]
-            if fixed is not None:
-                A[r, 2 * nF + e] = 1.0
-                b[r] = fixed
-                r += 1
-        scale = np.empty(2 * nF + nE)
-        for v, k in idx.items():
-            scale[2 * k:2 * k + 2] = OLD_POS if v in host.prim else NEW_POS
-        scale[2 * nF:] = LENGTH
-        M = A * scale
-        Mp = np.linalg.pinv(M, rcond=1e-10)
+        shape = (tuple(v in host.prim for v in free),
+                 tuple((idx.get(v, -1), idx.get(w, -1), d, t.lengths[lab][2])
+                       for v, i, w, j, d, lab in edges))
+        fact = self.cache.get(shape)
+        if fact is None:
+            fact = self.cache.put(shape, _factorise(*shape))
+        b = _right_hand_side(shape[1], edges, host.pos)
+        M, Mp = fact.M, fact.Mp
         res = b - M @ (Mp @ b)
         if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
             return None
         # Lengths the system fixes whatever the target (their row of x = R t + c is constant):
         # one outside its class's range dooms every sample, so the round is skipped.
-        nF2 = 2 * nF
-        P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
-        R = P[nF2:]
+        nF2 = 2 * len(free)
+        A, scale, R, fixed_rows = fact.A, fact.scale, fact.R, fact.fixed_rows
         c = scale[nF2:] * (Mp[nF2:] @ b)
         # A system with one solution gives the same sample every time: one try is enough.
-        self.unique = bool(np.abs(P).max(initial=0.0) < 1e-9)
-        fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
+        self.unique = fact.unique
         tol = 1e-7 * t.unit
         for e in np.flatnonzero(fixed_rows):
             lo, hi, _, _ = t.lengths[edges[e][5]]
@@ -255,7 +234,7 @@ class Solver:
             p = host.pos.get(v)
             if p is None:
                 mid[2 * k], mid[2 * k + 1] = self.aim.get(v, (cx, cy))
-                half[2 * k] = half[2 * k + 1] = 1.5 * u + self._centre_spread
+                half[2 * k] = half[2 * k + 1] = 1.5 * u
             else:
                 mid[2 * k], mid[2 * k + 1] = p
         for e, (v, i, w, j, d, lab) in enumerate(edges):
@@ -280,53 +259,69 @@ class Solver:
             return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
         return a, bb
 
-    def _targets(self, free, edges, f: float = 1.0) -> np.ndarray:
-        host, t, rng = self.host, self.host.t, self.rng
-        u = self.scale
+    def _round(self, free, edges) -> "_Round":
+        """What stays the same for every sample of a round, as arrays."""
+        host, t = self.host, self.host.t
         nF = len(free)
-        x = np.empty(2 * nF + len(edges))
-        noise = rng.normal(0.0, 0.5 * u * f, size=2 * nF)
-        cx, cy = self.center()
+        base = np.full(2 * nF, np.nan)       # old vertices: where they are; new: their aim
+        new = np.zeros(2 * nF, dtype=bool)
         for k, v in enumerate(free):
             p = host.pos.get(v)
             if p is None:
-                ax, ay = self.aim.get(v, (cx, cy))
-                x[2 * k], x[2 * k + 1] = ax + noise[2 * k], ay + noise[2 * k + 1]
-            else:
-                x[2 * k], x[2 * k + 1] = p
-        draws = rng.random(len(edges))
+                new[2 * k:2 * k + 2] = True
+                p = self.aim.get(v)
+            if p is not None:
+                base[2 * k], base[2 * k + 1] = p
+        known = np.full(len(edges), np.nan)  # fixed lengths, and lengths of existing edges
+        lo, hi = np.empty(len(edges)), np.empty(len(edges))
+        tiles = []
         for e, (v, i, w, j, d, lab) in enumerate(edges):
-            lo, hi, fixed, tile = t.lengths[lab]
+            lo[e], hi[e], fixed, tile = t.lengths[lab]
             if fixed is not None:
-                x[2 * nF + e] = fixed
+                known[e] = fixed
             elif v in host.prim and host.link[v][i] == (w, j):
                 pv, pw = host.pos[v], host.pos[w]
-                x[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
-            else:
-                a, bb = self._draw_range(lo, hi, f)
-                x[2 * nF + e] = a + (bb - a) * draws[e]
+                known[e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
+            if tile and fixed is None:
+                tiles.append((e, tile))
+        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, tiles)
+
+    def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
+        rng = self.rng
+        nP = len(rd.base)
+        x = np.empty(nP + len(rd.known))
+        noise = rng.normal(0.0, 0.5 * self.scale * f, size=nP)
+        cx, cy = self.center()
+        pos = rd.base.copy()
+        pos[0::2][rd.aimless[0::2]] = cx
+        pos[1::2][rd.aimless[1::2]] = cy
+        x[:nP] = np.where(rd.new, pos + noise, pos)
+        draws = rng.random(len(rd.known))
+        a = np.maximum(rd.lo, 0.5 * self.scale * f)
+        bb = np.minimum(rd.hi, 1.5 * self.scale * f)
+        missed = a > bb        # as in _draw_range: the whole class, or its shortest length
+        whole = missed if f == 1.0 else missed & (rd.hi < a)
+        short = missed & ~whole
+        a, bb = np.where(missed, rd.lo, a), np.where(whole, rd.hi, np.where(short, rd.lo, bb))
+        x[nP:] = np.where(rd.drawn, a + (bb - a) * draws, rd.known)
         return x
 
-    def _sample(self, free, edges, A, b, scale, Mp, f: float = 1.0) -> dict[int, Point] | None:
+    def _sample(self, free, edges, A, b, scale, Mp, rd, f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
-        target = self._targets(free, edges, f)
+        target = self._targets(rd, f)
         x = target + scale * (Mp @ (b - A @ target))
         nF = len(free)
         s = x[2 * nF:]
-        tiles = [(e, t.lengths[lab][3]) for e, (*_, lab) in enumerate(edges)
-                 if t.lengths[lab][3] and t.lengths[lab][2] is None]
-        if tiles:
-            x = self._snap_tiles(x, nF, tiles, A, b)
+        if rd.tiles:
+            x = self._snap_tiles(x, nF, rd.tiles, A, b)
             if x is None:
                 self._fail("tile lengths")
                 return None
             s = x[2 * nF:]
         tol = 1e-7 * t.unit
-        for e, (*_, lab) in enumerate(edges):
-            lo, hi, _, _ = t.lengths[lab]
-            if not (s[e] > tol and lo - tol <= s[e] <= hi + tol):
-                self._fail("edge length")
-                return None
+        if not np.all((s > tol) & (rd.lo - tol <= s) & (s <= rd.hi + tol)):
+            self._fail("edge length")
+            return None
         pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
         if not self._planar(pos, edges):
             return None
@@ -395,6 +390,99 @@ class Solver:
                     self._fail("crossing")
                     return False
         return True
+
+
+@dataclass(frozen=True)
+class _Round:
+    """A round's constant arrays: free vertices' base positions (old: where they are, new:
+    their aim), which are new and which have no aim (the change's centre, per sample); edge
+    lengths known in advance (fixed, or kept), which are drawn instead, their class bounds,
+    and the tiled edges."""
+
+    base: np.ndarray
+    new: np.ndarray
+    aimless: np.ndarray
+    known: np.ndarray
+    drawn: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    tiles: list
+
+
+@dataclass(frozen=True)
+class Factor:
+    """What a system's shape alone fixes: its matrix, column scales and their pseudo-inverse,
+    the rows of lengths that no target moves, and whether the solution is unique."""
+
+    A: np.ndarray
+    scale: np.ndarray
+    M: np.ndarray
+    Mp: np.ndarray
+    R: np.ndarray
+    fixed_rows: np.ndarray
+    unique: bool
+
+
+class SystemCache:
+    """Factorisations by system shape. A move's system depends only on its topology (which
+    vertices are free and old, each edge's ends, direction and fixed length), never on where
+    the old vertices are, and the same few shapes come back step after step: one pinv each.
+    Bounded: when full it is emptied, which costs only recomputation."""
+
+    def __init__(self, size: int = 4096):
+        self.size, self.table = size, {}
+
+    def get(self, shape):
+        return self.table.get(shape)
+
+    def put(self, shape, fact: Factor) -> Factor:
+        if len(self.table) >= self.size:
+            self.table.clear()
+        self.table[shape] = fact
+        return fact
+
+
+def _factorise(old: tuple[bool, ...], edges) -> Factor:
+    """`A` over (positions of the free vertices, edge lengths): row pair e says
+    p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length."""
+    nF, nE = len(old), len(edges)
+    fixed = [e for e, (*_, f) in enumerate(edges) if f is not None]
+    A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
+    for e, (iv, iw, d, _) in enumerate(edges):
+        for c in (0, 1):
+            if iw >= 0:
+                A[2 * e + c, 2 * iw + c] += 1.0
+            if iv >= 0:
+                A[2 * e + c, 2 * iv + c] -= 1.0
+            A[2 * e + c, 2 * nF + e] = -d[c]
+    A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
+    scale = np.empty(2 * nF + nE)
+    scale[:2 * nF] = np.repeat(np.where(old, OLD_POS, NEW_POS), 2)
+    scale[2 * nF:] = LENGTH
+    M = A * scale
+    Mp = np.linalg.pinv(M, rcond=1e-10)
+    P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
+    R = P[2 * nF:]
+    return Factor(A, scale, M, Mp, R, np.abs(R).max(axis=1, initial=0.0) < 1e-9,
+                  bool(np.abs(P).max(initial=0.0) < 1e-9))
+
+
+def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
+    """b: the fixed ends' positions, then the fixed lengths."""
+    nE = len(edges)
+    fixed = [f for *_, f in shape_edges if f is not None]
+    b = np.zeros(2 * nE + len(fixed))
+    for e, ((iv, iw, _, _), (v, _, w, _, _, _)) in enumerate(zip(shape_edges, edges)):
+        if iw < 0:
+            pw = pos[w]
+            b[2 * e] -= pw[0]
+            b[2 * e + 1] -= pw[1]
+        if iv < 0:
+            pv = pos[v]
+            b[2 * e] += pv[0]
+            b[2 * e + 1] += pv[1]
+    b[2 * nE:] = fixed
+    return b
 
 
 def _dist(p: Point, q: Point) -> float:

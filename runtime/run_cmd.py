@@ -9,6 +9,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
+from grammar_lang.blas import pin_blas_threads
 from grammar_lang.diagnostics import Span, error
 from grammar_lang.rules import Grammar
 
@@ -142,7 +143,7 @@ def run_command(args: argparse.Namespace) -> int:
     show = not args.quiet
     summaries: list[Summary]
     if args.jobs > 1 and len(jobs) > 1:
-        with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+        with ProcessPoolExecutor(max_workers=args.jobs, initializer=pin_blas_threads) as pool:
             summaries = []
             for job, s in zip(jobs, pool.map(run_job, jobs)):
                 summaries.append(s)

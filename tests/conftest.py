@@ -3,6 +3,11 @@ from pathlib import Path
 
 import pytest
 
+from grammar_lang.blas import pin_blas_threads
+
+# As the CLIs do: BLAS threads spin on the solver's small matrices.
+pin_blas_threads()
+
 ROOT = Path(__file__).resolve().parent.parent
 # The corpus lives beside the repository (../shared/corpus); GG_CORPUS overrides.
 CORPUS = Path(os.environ.get("GG_CORPUS", ROOT.parent / "shared" / "corpus" / "examples"))
