@@ -6,8 +6,6 @@ import argparse
 import sys
 from typing import Callable, Sequence
 
-from rich.console import Console
-
 from . import __version__
 from .diagnostics import UserError
 
@@ -29,7 +27,8 @@ def common_flags(parser: argparse.ArgumentParser) -> None:
                         help="show internal details (tracebacks) on errors")
 
 
-def stderr_console() -> Console:
+def stderr_console():
+    from rich.console import Console     # loaded only by commands that print rich output
     return Console(stderr=True, highlight=False, soft_wrap=True)
 
 

@@ -8,13 +8,14 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from grammar_lang.blas import pin_blas_threads
 from grammar_lang.diagnostics import Span, error
 from grammar_lang.rules import Grammar
 
-from .costs import parse_cost
-from .generate import Engine, Summary
+if TYPE_CHECKING:
+    from .generate import Summary
 
 DEFAULT_STEPS = 200
 
@@ -104,6 +105,8 @@ def output_paths(out: str, count: int) -> list[str]:
 
 def run_job(job: Job, progress=None) -> Summary:
     """Generate one drawing and write it; runs in a worker process for --jobs."""
+    from .costs import parse_cost       # numpy and the engine load only when a run starts,
+    from .generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
                     parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits))
@@ -134,6 +137,7 @@ def run_command(args: argparse.Namespace) -> int:
         raise error(f"--out {out}: unknown output format", None,
                     "end the name with .svg or .json")
     grammar = load_grammar(args.file)
+    from .costs import parse_cost
     # Validate the cost spec once, before any work.
     parse_cost(args.cost, [l.name for l in grammar.header.labels], args.steps)
     both = None if args.direction is None else args.direction == "both"
