@@ -27,11 +27,13 @@ from typing import Callable
 from grammar_lang import __version__
 from grammar_lang import boundary as bd
 from grammar_lang.example import Example
+from grammar_lang.frame import Frame, find_frame
 from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
 from .canon import canonical_key, split
+from .framing import frame_rules, frame_starters
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .matching import Match, Matcher, Piece
@@ -61,6 +63,7 @@ class Report:
     limits_hit: tuple[str, ...] = ()
     remaining: int = 0
     remaining_boundaries: tuple[str, ...] = ()
+    frame_rules_dropped: int = 0      # rules that would create, move or delete the frame
 
     @property
     def verdict(self) -> str:
@@ -110,6 +113,7 @@ class Inference:
         self.loops = not opts.no_loops
         self.splice = not (opts.connected or opts.no_loops)
         self.progress = progress
+        self.frame = find_frame(example)      # a border that is not one loop is reported here
         self.t0 = time.perf_counter()
         self.structural: list[Rule] = []     # §5.4 rules that restructured the blocks
         self.pending: tuple[list[Graph], set[int], Rule] | None = None
@@ -476,6 +480,10 @@ class Inference:
         limited = bool(st.limits_hit) or bool(front)
         shown = sorted(remaining, key=lambda n: n.rank)[:5]
         rules = self._rules()
+        dropped = 0
+        if self.frame is not None:
+            rules, dropped = frame_rules(rules, self.ex)
+            rules += frame_starters(self.ex, example_slots(self.ex))
         report = Report(
             example=self.ex.name,
             primitives=len(self.rings),
@@ -492,11 +500,12 @@ class Inference:
             remaining=len(remaining),
             remaining_boundaries=tuple(self.ex.format(n.graph.string(self.rings))
                                        for n in shown),
+            frame_rules_dropped=dropped,
         )
-        return CompileResult(Grammar(header(self.ex, not limited), rules), report)
+        return CompileResult(Grammar(header(self.ex, not limited, self.frame), rules), report)
 
 
-def header(ex: Example, complete: bool) -> Header:
+def header(ex: Example, complete: bool, frame: Frame | None = None) -> Header:
     digest = ""
     try:
         digest = hashlib.sha256(Path(ex.path).read_bytes()).hexdigest()
@@ -505,7 +514,18 @@ def header(ex: Example, complete: bool) -> Header:
     return Header(source=ex.path, source_hash=digest, compiler_version=__version__,
                   exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
                   labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
-                  decorations=ex.decorations, complete=complete)
+                  decorations=ex.decorations, complete=complete, frame=frame)
+
+
+def example_slots(ex: Example) -> list[tuple[int, int, int, int]]:
+    """The example drawing's edges as glued slot pairs (u, i, v, j), one per drawing edge."""
+    rings = [ex.primitives[p].ring for p in ex.vertex_primitive]
+    edges = []
+    for (u, v, *_), (label, forward) in zip(ex.graph.edges, ex.edge_label):
+        a = (u, rings[u].index(bd.half(label, not forward)))
+        b = (v, rings[v].index(bd.half(label, forward)))
+        edges.append(min(a, b) + max(a, b))
+    return edges
 
 
 def example_graphs(ex: Example) -> list[Graph]:
@@ -513,12 +533,7 @@ def example_graphs(ex: Example) -> list[Graph]:
     one per isomorphism class, in canonical order."""
     if ex.graph is None or not ex.vertex_primitive:
         return []
-    rings = [ex.primitives[p].ring for p in ex.vertex_primitive]
-    edges = []
-    for (u, v, *_), (label, forward) in zip(ex.graph.edges, ex.edge_label):
-        a = (u, rings[u].index(bd.half(label, not forward)))
-        b = (v, rings[v].index(bd.half(label, forward)))
-        edges.append(min(a, b) + max(a, b))
+    edges = example_slots(ex)
     ring_len = [len(p.ring) for p in ex.primitives]
     unique = {canonical_key(g, ring_len): g for g in split(ex.vertex_primitive, edges)}
     return [unique[k] for k in sorted(unique)]

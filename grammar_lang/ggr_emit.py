@@ -60,6 +60,9 @@ def _header(h: Header, names: list[str]) -> list[str]:
     out.append(f"limits generations={lim.generations} half_edges={lim.half_edges} "
                f"graphs={lim.graphs}{seconds}")
     out.append(f"unit {num(h.unit)}")
+    if h.frame is not None:
+        out.append("frame " + "  ".join(f"{name(h.primitives[c.prim].name)} {num(c.x)} {num(c.y)}"
+                                        for c in h.frame.corners))
     out.append("")
     out.append(f"exterior {name(h.exterior)}")
     if h.face_labels:

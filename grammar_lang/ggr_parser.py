@@ -24,6 +24,7 @@ from . import boundary as bd
 from .diagnostics import Diagnostic, Span, UserError, did_you_mean
 from .example import EdgeLabel, Primitive
 from .fileio import read_text
+from .frame import Corner, Frame
 from .graph import EMPTY, Side, face_walk
 from .rules import Grammar, Header, Rule
 from .source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
@@ -394,7 +395,24 @@ class _Builder:
                    "vertex": {p.name for p in prims}}
         fields["decorations"] = tuple(d for d in (self._guard(self._decoration, n, targets)
                                                   for n in lists["decorate"]) if d)
+        if "frame" in singles:
+            fields["frame"] = self._frame(singles["frame"], prims)
         return Header(**fields)
+
+    def _frame(self, node: Tree, prims) -> Frame:
+        """`frame P x y P x y …`: the corners of the border, in order round it."""
+        index = {p.name: k for k, p in enumerate(prims)}
+        parts, corners = node.children, []
+        for k in range(0, len(parts), 3):
+            tok, x, y = parts[k:k + 3]
+            name = self.name(tok)
+            if name not in index:
+                self.fail(f"unknown primitive '{name}' in the frame", tok,
+                          did_you_mean(name, index) or "a corner is one of the primitives above")
+            corners.append(Corner(index[name], self.number(x), self.number(y)))
+        if len(corners) < 3:
+            self.fail("a frame has at least three corners", self._first_token(node))
+        return Frame(tuple(corners))
 
     def _unique(self, nodes: list[Tree], what: str) -> None:
         seen: dict[str, int] = {}
@@ -842,7 +860,7 @@ class _Context:
 _STATUS = {"complete": True, "limited": False, "unknown": None}
 _KEYWORD = {"version": "ggr", "checksum": "checksum", "source": "source", "compiler": "compiler",
             "mode": "mode", "status": "status", "unit": "unit", "exterior": "exterior",
-            "faces": "faces", "options": "options", "limits": "limits"}
+            "faces": "faces", "options": "options", "limits": "limits", "frame": "frame"}
 _OPTION_KEYS = {"angle_tolerance": "float", "snap_angle": "float", "merge_distance": "optfloat",
                 "unit": "optfloat", "connected": "bool", "no_loops": "bool"}
 _LIMIT_KEYS = {"generations": "int", "half_edges": "int", "graphs": "int", "seconds": "float"}

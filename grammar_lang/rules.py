@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 from .diagnostics import Span
 from .example import EdgeLabel, Primitive
+from .frame import Frame
 from .graph import Side
 from .source import Decoration, EdgeClass, Options
 
@@ -47,6 +48,7 @@ class Header:
     decorations: tuple[Decoration, ...] = ()
     mode: str = "dpo"                 # 'dpo', or 'spo' (dangling edges are deleted)
     complete: bool | None = None      # None: not known (hand-written)
+    frame: Frame | None = None        # the border of the space; generation starts from it
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ import numpy as np
 from grammar_lang.rules import Grammar
 
 from .costs import Cost, NoCost, Stats, metropolis_accepts
+from .framing import place_frame
 from .geometry import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from .host import Host, Point, Tables
 from .landing import outer_label, sectors, spot
@@ -70,8 +71,11 @@ class Summary:
 class Engine:
     def __init__(self, grammar: Grammar, seed: int = 0, cost: Cost | None = None,
                  temperature: float = 1.0, I: int = I_ROUNDS, J: int = J_SAMPLES,
-                 bidirectional: bool | None = None, limits: dict[int, int] | None = None):
+                 bidirectional: bool | None = None, limits: dict[int, int] | None = None,
+                 extent: tuple[float, float] | None = None):
         self.grammar = grammar
+        frame = grammar.header.frame
+        self.frame = frame.scaled(*extent) if frame is not None and extent else frame
         self.schedule = Schedule.build(grammar, bidirectional, limits)
         self.cost = cost or NoCost()
         self.temperature = temperature
@@ -87,6 +91,8 @@ class Engine:
         self.seed = seed
         self.rng = np.random.default_rng(seed)
         self.host = Host(self.grammar.header, self.tables)
+        if self.frame is not None:
+            place_frame(self.host, self.frame)
         self.history: list[StepRecord] = []
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}
@@ -189,6 +195,8 @@ class Engine:
         counts its coin was already tossed on, when step() tossed it)."""
         host = self.host
         change = plan(host, move, match, self.schedule.spo)
+        if host.pinned and not host.pinned.isdisjoint(change.removed):
+            return Outcome(None, "moves the frame")
         if use_cost:
             after = self.stats(change)
             if after != screened:
@@ -297,6 +305,12 @@ class Engine:
         """Where the change happens: the replaced part, else its context, else somewhere new."""
         host = self.host
         pts = [host.pos[v] for v in change.removed]
+        if not pts and host.frame is not None and len(change.cut) == 1:
+            # A structure stood on a bare stretch of the frame's side: anywhere along it.
+            (v, i), = change.cut
+            p, q = host.pos[v], host.pos[host.link[v][i][0]]
+            f = 0.1 + 0.8 * float(self.rng.random())
+            return (p[0] + f * (q[0] - p[0]), p[1] + f * (q[1] - p[1]))
         if not pts:
             pts = [host.pos[b[0]] for _, b in change.glue if b[0] in host.prim]
         if pts:

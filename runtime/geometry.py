@@ -36,6 +36,9 @@ from .spatial import seg_near
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
 NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
+# A frame's sides are as long as the frame: a structure standing on one takes what it needs
+# and the stretches of bare side beside it take the rest, so their lengths are cheapest.
+FRAME_SIDE = 100.0
 SHRINK = 0.75
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = ("crossing", "coincident vertices")
@@ -84,6 +87,8 @@ class Solver:
                     p, q = host.pos[v], host.pos[s[0]]
                     lengths.append(_dist(p, q))
         for v, i in self.change.cut:
+            if host.t.label[host.prim[v]][i] in host.border_labels:
+                continue     # a frame's side is as long as the frame, not a local scale
             w = host.link[v][i][0]
             lengths.append(_dist(host.pos[v], host.pos[w]))
         if not lengths:
@@ -108,9 +113,9 @@ class Solver:
             na, nb = a[0] in self.new_prim, b[0] in self.new_prim
             if na and nb:
                 parent[root(a[0])] = root(b[0])
-            elif na:
+            elif na and b[0] not in host.pinned:
                 own[a[0]].append(host.pos[b[0]])
-            elif nb:
+            elif nb and a[0] not in host.pinned:
                 own[b[0]].append(host.pos[a[0]])
         part: dict[int, list[Point]] = {}
         for v in sorted(self.new_prim):
@@ -163,7 +168,7 @@ class Solver:
         fs = set(free)
         near = {w for v in free for _, (w, _) in self.adjacency(v)}
         near.update(s[0] for pair in self.bridges for s in pair)
-        cands = sorted(near - fs)
+        cands = sorted(near - fs - self.host.pinned)
         if not cands:
             return False
         free.append(cands[int(self.rng.integers(len(cands)))])
@@ -187,8 +192,8 @@ class Solver:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
         shape = (tuple(v in host.prim for v in free),
-                 tuple((idx.get(v, -1), idx.get(w, -1), d, t.lengths[lab][2])
-                       for v, i, w, j, d, lab in edges))
+                 tuple((idx.get(v, -1), idx.get(w, -1), d, t.lengths[lab][2],
+                        lab in host.border_labels) for v, i, w, j, d, lab in edges))
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
@@ -323,6 +328,13 @@ class Solver:
             self._fail("edge length")
             return None
         pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
+        frame = self.host.frame
+        # Vertices on the border lie on the frame's sides (held there by their directions);
+        # every other vertex must be inside it.
+        if frame is not None and not all(frame.contains(*p, self.clearance) for v, p in pos.items()
+                                         if self.prim(v) not in self.host.on_border):
+            self._fail("outside the frame")
+            return None
         if not self._planar(pos, edges):
             return None
         return pos
@@ -444,11 +456,12 @@ class SystemCache:
 
 def _factorise(old: tuple[bool, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
-    p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length."""
+    p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
+    the shape is (free index of v or −1, of w or −1, direction, fixed length, frame side)."""
     nF, nE = len(old), len(edges)
-    fixed = [e for e, (*_, f) in enumerate(edges) if f is not None]
+    fixed = [e for e, (_, _, _, f, _) in enumerate(edges) if f is not None]
     A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
-    for e, (iv, iw, d, _) in enumerate(edges):
+    for e, (iv, iw, d, _, _) in enumerate(edges):
         for c in (0, 1):
             if iw >= 0:
                 A[2 * e + c, 2 * iw + c] += 1.0
@@ -458,7 +471,7 @@ def _factorise(old: tuple[bool, ...], edges) -> Factor:
     A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
     scale = np.empty(2 * nF + nE)
     scale[:2 * nF] = np.repeat(np.where(old, OLD_POS, NEW_POS), 2)
-    scale[2 * nF:] = LENGTH
+    scale[2 * nF:] = [FRAME_SIDE if side else LENGTH for *_, side in edges]
     M = A * scale
     Mp = np.linalg.pinv(M, rcond=1e-10)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
@@ -470,9 +483,9 @@ def _factorise(old: tuple[bool, ...], edges) -> Factor:
 def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
     """b: the fixed ends' positions, then the fixed lengths."""
     nE = len(edges)
-    fixed = [f for *_, f in shape_edges if f is not None]
+    fixed = [f for _, _, _, f, _ in shape_edges if f is not None]
     b = np.zeros(2 * nE + len(fixed))
-    for e, ((iv, iw, _, _), (v, _, w, _, _, _)) in enumerate(zip(shape_edges, edges)):
+    for e, ((iv, iw, _, _, _), (v, _, w, _, _, _)) in enumerate(zip(shape_edges, edges)):
         if iw < 0:
             pw = pos[w]
             b[2 * e] -= pw[0]

@@ -110,6 +110,10 @@ class Host:
         self.n_edges = 0
         self.n_open = 0
         self.journal: list[tuple] | None = None
+        self.pinned: frozenset[int] = frozenset()   # the frame's corners (runtime/framing.py)
+        self.frame = None                           # the placed Frame, when there is one
+        self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
+        self.border_labels: frozenset[int] = frozenset()
 
     # --- reading ----------------------------------------------------------------------------
     def __len__(self) -> int:

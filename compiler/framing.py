@@ -1,0 +1,103 @@
+"""Rules for an example drawn in a frame (paper Appendix A).
+
+The frame is the border of the space, not a shape to copy. Generation starts from it, so:
+- no starter may create any part of it (a starter holding a border half-edge would draw a
+  second, free-floating piece of border);
+- no rule may touch its corners, the vertices where the border turns. A rule replaces every
+  vertex of its matched side, so one holding a corner would move, delete or duplicate it.
+Rules may still hold the vertices on its straight sides, where structures stand and lines end:
+the side runs on through them, and a rule's boundary keeps the border half-edges it cuts.
+"""
+
+from __future__ import annotations
+
+from grammar_lang import boundary as bd
+from grammar_lang.frame import border_labels, border_primitives, corner_primitives
+from grammar_lang.graph import Side, face_walk
+from grammar_lang.rules import Rule
+
+from .canon import components
+
+
+def frame_rules(rules: tuple[Rule, ...], example) -> tuple[tuple[Rule, ...], int]:
+    """The rules that leave the frame alone, and how many were dropped."""
+    border = border_labels(example.labels, example.classes)
+    corners = corner_primitives(example.primitives, example.labels, border)
+    on_border = border_primitives(example.primitives, border)
+    kept = []
+    for r in rules:
+        verts = set(r.lhs.vertices) | set(r.rhs.vertices)
+        wires = {w >> 1 for w in r.lhs.wires + r.rhs.wires}
+        if r.is_starter and (verts & on_border or wires & border):
+            continue
+        if verts & corners:
+            continue
+        kept.append(r)
+    return tuple(kept), len(rules) - len(kept)
+
+
+def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
+    """Rules that stand the example's structures on a bare side of the frame.
+
+    With the frame as the start, nothing would grow: the inferred starters drew whole example
+    components, frame included. Instead, every structure that stands on a side between two
+    stretches of bare side (its two cut border half-edges carry a label that a corner carries,
+    the side as it is with nothing on it) becomes a rule `structure ⇄ that one side edge`,
+    a wired rule (§4.3): grown, it puts a copy of an example structure on the side, so the
+    drawing stays locally similar. Structures that meet the border elsewhere (a line across the
+    frame from side to side) are left to the inferred rules.
+    """
+    border = border_labels(example.labels, example.classes)
+    corners = corner_primitives(example.primitives, example.labels, border)
+    prims = example.vertex_primitive
+    rings = [example.primitives[p].ring for p in prims]
+    prim_rings = [p.ring for p in example.primitives]
+    bare = {bd.label_of(t) for v, p in enumerate(prims) if p in corners
+            for t in rings[v] if bd.label_of(t) in border}
+    keep = [e for e in slot_edges
+            if prims[e[0]] not in corners and prims[e[2]] not in corners
+            and bd.label_of(rings[e[0]][e[1]]) not in bare]
+    rules, seen = [], set()
+    for comp in components(len(prims), keep):
+        if prims[comp[0]] in corners:
+            continue
+        side = _component_side(comp, keep, prims, prim_rings)
+        rule = None if side is None else _standing_rule(side, prim_rings, len(rules))
+        if rule is not None:
+            key = (side.vertices, side.edges, rule.lhs.tokens(prim_rings))
+            if key not in seen:
+                seen.add(key)
+                rules.append(rule)
+    return tuple(rules)
+
+
+def _component_side(comp, edges, prims, prim_rings) -> Side | None:
+    """The component as a rule side whose boundary walks its open slots, or None when they
+    lie on more than one face (it does not stand on the side as one piece)."""
+    idx = {v: k for k, v in enumerate(comp)}
+    es = tuple(sorted((idx[v], i, idx[w], j) for v, i, w, j in edges if v in idx))
+    verts = tuple(prims[v] for v in comp)
+    glued = {(v, i) for v, i, _, _ in es} | {(w, j) for _, _, w, j in es}
+    opened = [(k, i) for k, p in enumerate(verts) for i in range(len(prim_rings[p]))
+              if (k, i) not in glued]
+    if len(opened) != 2:
+        return None
+    walk = face_walk(Side(verts, es, ()), opened[0], prim_rings)
+    if len(walk) != len(opened):
+        return None
+    return Side(verts, es, tuple(it for slot, n in walk for it in (slot, *bd.turns(n))))
+
+
+def _standing_rule(side: Side, rings, k: int) -> Rule | None:
+    """`side ⇄ wire` when the side's boundary is one bare edge's, ā a ∧, from some start."""
+    for r, start in enumerate(side.boundary):
+        if not isinstance(start, tuple):
+            continue
+        lhs = Side(side.vertices, side.edges, side.boundary[r:] + side.boundary[:r])
+        t = lhs.tokens(rings)
+        if not bd.is_bar(t[0]):
+            continue
+        wire = Side((), (), ((-1, 1), (-1, 0), bd.UP), wires=(t[0] ^ 1,))
+        if wire.tokens(rings) == t:
+            return Rule(f"stand{k}", lhs, wire)
+    return None

@@ -1,0 +1,172 @@
+"""The border of the space (paper Appendix A): a closed loop of edges of a border class.
+
+An example may be drawn inside a frame. The frame is not a shape to copy: generation starts
+from it, placed once, and everything grows inside it. Structures stand on its sides (their
+bottom edges are border edges) and lines end on it (a T-junction on a side).
+
+The frame's *corners* are the vertices where the border turns; the vertices where something
+meets a straight side are ordinary primitives that rules may create and remove, since the side
+runs straight on through them. A `Frame` keeps the corners in order round the loop; the edge
+from one corner to the next is a single border edge, the frame as it is before anything stands
+on it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from . import boundary as bd
+from .diagnostics import Span, error
+
+
+@dataclass(frozen=True)
+class Corner:
+    prim: int           # primitive index
+    x: float
+    y: float
+
+
+@dataclass(frozen=True)
+class Frame:
+    corners: tuple[Corner, ...]
+
+    @property
+    def box(self) -> tuple[float, float, float, float]:
+        xs, ys = [c.x for c in self.corners], [c.y for c in self.corners]
+        return min(xs), min(ys), max(xs), max(ys)
+
+    @property
+    def size(self) -> tuple[float, float]:
+        x0, y0, x1, y1 = self.box
+        return x1 - x0, y1 - y0
+
+    @property
+    def axis_aligned(self) -> bool:
+        n = len(self.corners)
+        return all(a.x == b.x or a.y == b.y
+                   for a, b in ((self.corners[k], self.corners[(k + 1) % n]) for k in range(n)))
+
+    def scaled(self, width: float, height: float) -> "Frame":
+        """The same frame stretched to `width` × `height`, its lower-left corner kept."""
+        x0, y0, _, _ = self.box
+        w, h = self.size
+        return Frame(tuple(Corner(c.prim, x0 + (c.x - x0) * width / w,
+                                  y0 + (c.y - y0) * height / h) for c in self.corners))
+
+    def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
+        """Inside the loop (even-odd rule), and at least `margin` inside its bounding box."""
+        x0, y0, x1, y1 = self.box
+        if not (x0 + margin <= x <= x1 - margin and y0 + margin <= y <= y1 - margin):
+            return False
+        inside, n = False, len(self.corners)
+        for k in range(n):
+            a, b = self.corners[k], self.corners[(k + 1) % n]
+            if (a.y > y) != (b.y > y):
+                if x < a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y):
+                    inside = not inside
+        return inside
+
+
+def border_labels(labels, classes) -> frozenset[int]:
+    """Ids of the labels whose class is a border class."""
+    border = {c.name for c in classes if c.border}
+    return frozenset(k for k, lab in enumerate(labels) if lab.cls in border)
+
+
+def _turns(ring, labels, border) -> bool:
+    """A vertex whose two border half-edges are not opposite: the border turns there."""
+    dirs = [labels[bd.label_of(t)].direction(bd.is_bar(t)) for t in ring
+            if bd.label_of(t) in border]
+    return len(dirs) == 2 and abs(abs(dirs[0] - dirs[1]) - 180.0) > 1e-6
+
+
+def corner_primitives(primitives, labels, border) -> frozenset[int]:
+    return frozenset(k for k, p in enumerate(primitives) if _turns(p.ring, labels, border))
+
+
+def border_primitives(primitives, border) -> frozenset[int]:
+    """Primitives with at least one border half-edge: the frame and what stands on it."""
+    return frozenset(k for k, p in enumerate(primitives)
+                     if any(bd.label_of(t) in border for t in p.ring))
+
+
+def find_frame(ex) -> Frame | None:
+    """The example's frame, or None when it has no border edges. A border that does not close
+    into one loop is the user's error, located at one of its edges."""
+    g = ex.graph
+    border = border_labels(ex.labels, ex.classes)
+    if g is None or not border:
+        return None
+    around: dict[int, list[int]] = {}
+    for e, (label, _) in enumerate(ex.edge_label):
+        if label in border:
+            u, v = g.edges[e][:2]
+            around.setdefault(u, []).append(e)
+            around.setdefault(v, []).append(e)
+    if not around:
+        return None
+    if all(len(es) <= 2 for es in around.values()) and any(len(es) == 1 for es in around.values()) \
+            and not _has_loop(around, g.edges):
+        return None      # open border lines only (a ground with no frame): no frame to start from
+    for v, es in sorted(around.items()):
+        if len(es) != 2:
+            what = "ends in the air" if len(es) == 1 else f"branches ({len(es)} border edges meet)"
+            raise _frame_error(ex, es[0], f"the border {what} at {_at(g.vertices[v])}",
+                               "a frame is one closed loop of border edges; draw other lines "
+                               "in a class without `border`")
+    start = min(around)
+    loop, prev, v = [start], None, start
+    while True:
+        e = next(e for e in around[v] if e != prev)
+        u, w = g.edges[e][:2]
+        v, prev = (w if u == v else u), e
+        if v == start:
+            break
+        loop.append(v)
+    if len(loop) != len(around):
+        raise _frame_error(ex, around[min(set(around) - set(loop))][0],
+                           "the border is more than one closed loop",
+                           "an example has one frame; give other loops a class without `border`")
+    rings = [ex.primitives[ex.vertex_primitive[v]].ring for v in loop]
+    corners = tuple(Corner(ex.vertex_primitive[v], *map(float, g.vertices[v]))
+                    for v, ring in zip(loop, rings) if _turns(ring, ex.labels, border))
+    return Frame(corners)
+
+
+def _has_loop(around: dict[int, list[int]], edges) -> bool:
+    """Whether some component of the border graph is a cycle (all its vertices of degree 2)."""
+    seen: set[int] = set()
+    for start in around:
+        if start in seen:
+            continue
+        stack, comp = [start], []
+        seen.add(start)
+        while stack:
+            v = stack.pop()
+            comp.append(v)
+            for e in around[v]:
+                for w in edges[e][:2]:
+                    if w not in seen:
+                        seen.add(w)
+                        stack.append(w)
+        if all(len(around[v]) == 2 for v in comp):
+            return True
+    return False
+
+
+def _at(p) -> str:
+    return f"({p[0]:g}, {p[1]:g})"
+
+
+def _frame_error(ex, edge: int, message: str, hint: str):
+    spans = ex.graph.spans
+    span = spans[edge] if edge < len(spans) and spans[edge] is not None else Span(ex.path)
+    return error(message, span, hint)
+
+
+def polygon_area(frame: Frame) -> float:
+    n = len(frame.corners)
+    return 0.5 * abs(math.fsum(frame.corners[k].x * frame.corners[(k + 1) % n].y
+                               - frame.corners[(k + 1) % n].x * frame.corners[k].y
+                               for k in range(n)))

@@ -1,0 +1,46 @@
+"""The frame placed in the host before the first step (paper Appendix A).
+
+Its corners are pinned: the solver never frees them and no move may remove them, and every
+vertex a move places must lie inside the frame. Between two corners runs one border edge,
+the side as it is before anything stands on it; rules split it where structures stand.
+"""
+
+from __future__ import annotations
+
+from grammar_lang.diagnostics import error
+from grammar_lang.frame import Frame, border_labels, border_primitives
+
+from .host import Host
+
+
+def place_frame(host: Host, frame: Frame) -> None:
+    t = host.t
+    ids = []
+    for c in frame.corners:
+        v = host.new_id()
+        host.add_vertex(v, c.prim, (c.x, c.y))
+        ids.append(v)
+    n = len(ids)
+    for k in range(n):
+        a, b = frame.corners[k], frame.corners[(k + 1) % n]
+        i = _slot_towards(t, a.prim, b.x - a.x, b.y - a.y)
+        j = _slot_towards(t, b.prim, a.x - b.x, a.y - b.y)
+        if i is None or j is None or t.rings[a.prim][i] != t.rings[b.prim][j] ^ 1:
+            raise error(f"the frame's side from ({a.x:g}, {a.y:g}) to ({b.x:g}, {b.y:g}) cannot "
+                        "be drawn as one edge: its two corners carry different border labels",
+                        None, "leave some room between the frame's corners and the shapes "
+                              "that stand on its sides")
+        host.glue((ids[k], i), (ids[(k + 1) % n], j))
+    host.pinned = frozenset(ids)
+    host.frame = frame
+    h = host.header
+    host.border_labels = border_labels(h.labels, h.classes)
+    host.on_border = border_primitives(h.primitives, host.border_labels)
+
+
+def _slot_towards(t, prim: int, dx: float, dy: float) -> int | None:
+    norm = (dx * dx + dy * dy) ** 0.5
+    for i, (ux, uy) in enumerate(t.direction[prim]):
+        if abs(ux * dx + uy * dy - norm) <= 1e-9 * max(norm, 1.0):
+            return i
+    return None

@@ -1,0 +1,92 @@
+"""Scenes in a frame (paper Appendix A): the frame is the border of the space."""
+
+from pathlib import Path
+
+import pytest
+
+from compiler.infer import compile_example
+from grammar_lang.diagnostics import UserError
+from grammar_lang.frame import border_labels, border_primitives, corner_primitives, find_frame
+from grammar_lang.ggr_emit import emit_ggr
+from grammar_lang.ggr_parser import parse_ggr
+from grammar_lang.loader import load_example
+from runtime.generate import Engine
+from runtime.verifier import check_drawing
+
+ILLUSTRATIONS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "illustrations"
+NAMES = ["castle", "village", "flowers", "space-station"]
+
+
+@pytest.fixture(scope="module")
+def castle():
+    ex = load_example(ILLUSTRATIONS / "castle.gg")
+    return ex, compile_example(ex)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_illustration_has_one_rectangular_frame(name):
+    ex = load_example(ILLUSTRATIONS / f"{name}.gg")
+    frame = find_frame(ex)
+    assert frame is not None and len(frame.corners) == 4 and frame.axis_aligned
+    assert frame.box == (20.0, -800.0, 1560.0, -20.0)      # SVG (20, 20)–(1560, 800), y up
+    assert frame.contains(800, -400) and not frame.contains(10, -400)
+
+
+def test_examples_without_a_frame_keep_todays_behaviour():
+    for path in ("examples/castle.gg", "examples/house.gg", "examples/tree.gg"):
+        ex = load_example(Path(__file__).resolve().parent.parent / path)
+        assert find_frame(ex) is None
+
+
+def test_a_border_that_ends_in_the_air_beside_a_frame_is_located(tmp_path):
+    gg = tmp_path / "bad.gg"
+    gg.write_text('example "bad"\nface room #ccc\nclass edge { border }\n'
+                  "polygon room rect (0, 0) (10, 10)\n"
+                  "border rect (-5, -5) (20, 20) class edge\n"
+                  "polyline (30, 5) (40, 5) class edge\n")
+    with pytest.raises(UserError, match="ends in the air") as err:
+        find_frame(load_example(gg))
+    assert "bad.gg:6" in err.value.render()
+    gg.write_text(gg.read_text().replace("(30, 5) (40, 5)", "(20, 5) (30, 5)"))
+    with pytest.raises(UserError, match="branches"):
+        find_frame(load_example(gg))
+
+
+def test_inference_never_creates_or_touches_the_frame(castle):
+    ex, res = castle
+    g = res.grammar
+    border = border_labels(ex.labels, ex.classes)
+    corners = corner_primitives(ex.primitives, ex.labels, border)
+    on_border = border_primitives(ex.primitives, border)
+    assert g.header.frame == find_frame(ex)
+    stands = [r for r in g.rules if r.name.startswith("stand")]
+    assert stands, "structures standing on the frame's sides become rules"
+    for r in g.rules:
+        verts = set(r.lhs.vertices) | set(r.rhs.vertices)
+        assert not verts & corners, r.name
+        if r.is_starter:
+            assert not verts & on_border, r.name
+    # The frame survives the rule file.
+    assert parse_ggr(emit_ggr(g), "castle.ggr").header.frame == g.header.frame
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_a_castle_grows_inside_its_frame(castle, seed):
+    ex, res = castle
+    eng = Engine(res.grammar, seed=seed)
+    eng.run(60)
+    host = eng.host
+    frame = res.grammar.header.frame
+    corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)
+    assert corners == sorted(((c.x, c.y), c.prim) for c in frame.corners)
+    x0, y0, x1, y1 = frame.box
+    for v in host.vertices():
+        x, y = host.pos[v]
+        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+    # Exactly one frame: each corner primitive once, and something stands on it.
+    for c in frame.corners:
+        assert len(host.by_prim[c.prim]) == 1
+    assert len(host) > 4
+    failures = check_drawing(ex, host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
+    assert host.check_consistency() == []
