@@ -49,6 +49,7 @@ def label_example(source: ExampleSource, graph: ExampleGraph | None) -> Example:
     rigid = {c.name for c in resolved if c.rigid}
 
     labels, edge_label, notes = _cluster(source, obs, edge_keys, faces, rigid, lengths)
+    notes += _widened(classes, resolved)
     prims, vertex_prim = _primitives(source, obs, edge_label, labels, n_vertices)
     return Example(
         name=source.name, path=source.path, exterior=source.exterior,
@@ -59,6 +60,22 @@ def label_example(source: ExampleSource, graph: ExampleGraph | None) -> Example:
         edge_label=tuple(edge_label[i] for i in range(len(edge_keys))) if graph else (),
         notes=tuple(notes),
     )
+
+
+def _widened(given: dict[str, EdgeClass], resolved) -> list[Diagnostic]:
+    """A note for each limit the user gave that the example's own edges break."""
+    out = []
+    for c in resolved:
+        g = given[c.name]
+        for what, mine, theirs in (("min", c.min_length, g.min_length),
+                                   ("max", c.max_length, g.max_length)):
+            if theirs is not None and abs(mine - theirs) > 1e-9 * max(1.0, abs(theirs)):
+                out.append(Diagnostic(
+                    f"class {c.name}: {what} {theirs:g}, but the example has an edge "
+                    f"{mine:g} long; the class admits it, so that the example is a drawing too",
+                    g.span, f"set {what}: {mine:g} (or redraw that edge) to silence this",
+                    severity="note"))
+    return out
 
 
 def _face_order(source: ExampleSource, graph: ExampleGraph | None) -> list[str]:

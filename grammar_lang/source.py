@@ -44,13 +44,14 @@ class EdgeClass:
     DEFAULT_MAX = 4.0
 
     def resolved(self, unit: float, seen: tuple[float, float] | None = None) -> "EdgeClass":
-        """Concrete limits. A default limit also admits `seen`, the shortest and longest edges
-        of this class in the example, so the example itself is always a valid drawing."""
+        """Concrete limits. They also admit `seen`, the shortest and longest edges of this
+        class in the example, so the example itself is always a valid drawing: a structure
+        copied from it (a starter) can always be placed. `labelling` notes where the example
+        widened a limit the user gave."""
         lo = self.min_length if self.min_length is not None else self.DEFAULT_MIN * unit
         hi = self.max_length if self.max_length is not None else self.DEFAULT_MAX * unit
         if seen is not None:
-            lo = lo if self.min_length is not None else min(lo, seen[0])
-            hi = hi if self.max_length is not None else max(hi, seen[1])
+            lo, hi = min(lo, seen[0]), max(hi, seen[1])
         return EdgeClass(self.name, lo, hi, self.fixed, self.tile, self.rigid, self.border, self.span)
 
 

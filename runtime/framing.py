@@ -31,11 +31,31 @@ def place_frame(host: Host, frame: Frame) -> None:
                         None, "leave some room between the frame's corners and the shapes "
                               "that stand on its sides")
         host.glue((ids[k], i), (ids[(k + 1) % n], j))
+        inside = t.left[a.prim][i] if _counter_clockwise(frame) else t.right[a.prim][i]
     host.pinned = frozenset(ids)
     host.frame = frame
+    host.frame_face = inside
     h = host.header
     host.border_labels = border_labels(h.labels, h.classes)
     host.on_border = border_primitives(h.primitives, host.border_labels)
+
+
+def _counter_clockwise(frame: Frame) -> bool:
+    cs, n = frame.corners, len(frame.corners)
+    return sum(cs[k].x * cs[(k + 1) % n].y - cs[(k + 1) % n].x * cs[k].y for k in range(n)) > 0
+
+
+def random_inside(host: Host, rng) -> tuple[float, float]:
+    """A point drawn uniformly inside the frame's box, kept a tenth of it from the sides, and
+    inside the frame itself when it is not a rectangle (a few tries)."""
+    x0, y0, x1, y1 = host.frame.box
+    mx, my = 0.1 * (x1 - x0), 0.1 * (y1 - y0)
+    for _ in range(8):
+        p = (x0 + mx + (x1 - x0 - 2 * mx) * float(rng.random()),
+             y0 + my + (y1 - y0 - 2 * my) * float(rng.random()))
+        if host.frame.contains(*p):
+            return p
+    return p
 
 
 def _slot_towards(t, prim: int, dx: float, dy: float) -> int | None:

@@ -17,10 +17,11 @@ from typing import Callable
 
 import numpy as np
 
+from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
 from .costs import Cost, NoCost, Stats, metropolis_accepts
-from .framing import place_frame
+from .framing import place_frame, random_inside
 from .geometry import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from .host import Host, Point, Tables
 from .landing import outer_label, sectors, spot
@@ -68,6 +69,9 @@ class Summary:
     edges: int = 0
 
 
+OPENING_TRIES = 50      # proposals for a connected grammar's one starter before giving up
+
+
 class Engine:
     def __init__(self, grammar: Grammar, seed: int = 0, cost: Cost | None = None,
                  temperature: float = 1.0, I: int = I_ROUNDS, J: int = J_SAMPLES,
@@ -96,6 +100,21 @@ class Engine:
         self.history: list[StepRecord] = []
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}
+        self._open()
+
+    def _open(self) -> None:
+        """A connected grammar's one starter, placed before the first step; it is the first
+        record of the history, so undo can take it back like any step."""
+        move = self.schedule.opening_move(self.rng)
+        if move is None:
+            return
+        match = next(iter(self.matches(move, 1)), None)
+        for _ in range(OPENING_TRIES if match is not None else 0):
+            if self.apply(move, match, use_cost=False).applied is not None:
+                return
+        else:
+            raise error(f"the connected grammar's starter {move.rule.name} could not be placed",
+                        None, "check the frame's extent, or leave `connected` out")
 
     def reseed(self, seed: int) -> None:
         """Seed the random choices from here on; the drawing and history stay."""
@@ -319,6 +338,8 @@ class Engine:
         if n == 0:
             return (0.0, 0.0)
         label = self._landing_label(change)
+        if host.frame is not None and label in (None, host.t.exterior, host.frame_face):
+            return random_inside(host, self.rng)
         if label is not None and label != host.t.exterior:
             p = spot(host, self.rng, self._corners.get(label, []), 0.5 * host.t.unit)
             if p is not None:

@@ -114,6 +114,7 @@ class Host:
         self.frame = None                           # the placed Frame, when there is one
         self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
         self.border_labels: frozenset[int] = frozenset()
+        self.frame_face: str | None = None          # the face just inside the frame
 
     # --- reading ----------------------------------------------------------------------------
     def __len__(self) -> int:

@@ -39,6 +39,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--direction", choices=("both", "forward"),
                    help="use rules in both directions (default for compiled grammars) or "
                         "forward only (default for spo rule files)")
+    p.add_argument("--extent", metavar="W×H",
+                   help="size of the frame a framed example's drawing fills, in drawing units "
+                        "(W×H or WxH; default: the example's own frame)")
     p.add_argument("--quiet", action="store_true", help="no progress display or summary")
 
 
@@ -53,6 +56,7 @@ class Job:
     bidirectional: bool | None
     out: str
     name: str
+    extent: tuple[float, float] | None = None
 
 
 def load_grammar(path: str) -> Grammar:
@@ -103,13 +107,38 @@ def output_paths(out: str, count: int) -> list[str]:
     return [str(p.with_name(f"{p.stem}-{k + 1:04d}{p.suffix}")) for k in range(count)]
 
 
+def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | None:
+    """`W×H` (or `WxH`): positive, finite, and room for the longest rigid edge."""
+    if text is None:
+        return None
+    hint = "give the frame's width and height in drawing units, for example --extent 1540x780"
+    if grammar.header.frame is None:
+        raise error("--extent sizes a frame, and this grammar has none", None,
+                    "draw the example inside a closed loop of a border class (docs/scenes.md)")
+    parts = text.replace("×", "x").lower().split("x")
+    try:
+        w, h = (float(p) for p in parts)
+    except ValueError:
+        raise error(f"--extent {text}: not W×H", None, hint) from None
+    if not (0 < w < 1e9 and 0 < h < 1e9):
+        raise error(f"--extent {text}: width and height must be positive and finite", None, hint)
+    rigid = max((l.length or 0.0 for l in grammar.header.labels
+                 if any(c.name == l.cls and (c.rigid or c.fixed) for c in grammar.header.classes)),
+                default=0.0)
+    if min(w, h) < rigid:
+        raise error(f"--extent {text} is smaller than the example's largest rigid part "
+                    f"({rigid:g} units long)", None, "give a larger extent")
+    return w, h
+
+
 def run_job(job: Job, progress=None) -> Summary:
     """Generate one drawing and write it; runs in a worker process for --jobs."""
     from .costs import parse_cost       # numpy and the engine load only when a run starts,
     from .generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
                     parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
-                    job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits))
+                    job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
+                    extent=job.extent)
     summary = engine.run(job.steps, progress)
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
@@ -141,8 +170,9 @@ def run_command(args: argparse.Namespace) -> int:
     # Validate the cost spec once, before any work.
     parse_cost(args.cost, [l.name for l in grammar.header.labels], args.steps)
     both = None if args.direction is None else args.direction == "both"
+    extent = parse_extent(args.extent, grammar)
     jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
-                _parse_limits(args.limit), both, path, Path(args.file).name)
+                _parse_limits(args.limit), both, path, Path(args.file).name, extent)
             for k, path in enumerate(output_paths(out, args.count))]
     show = not args.quiet
     summaries: list[Summary]

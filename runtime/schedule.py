@@ -48,6 +48,9 @@ class Level:
 class Schedule:
     levels: tuple[Level, ...]
     spo: bool
+    # With `connected` (Appendix A): the starters, applied once at the start instead of as
+    # moves, so that the drawing is one structure (plus the frame it stands in).
+    opening: tuple[tuple[DirectedRule, float], ...] = ()
 
     @staticmethod
     def build(grammar: Grammar, bidirectional: bool | None = None,
@@ -55,13 +58,20 @@ class Schedule:
         spo = grammar.header.mode == "spo"
         both = (not spo) if bidirectional is None else bidirectional
         rings = grammar.rings
+        connected = grammar.header.options.connected
         by_level: dict[int, list[tuple[DirectedRule, float]]] = {}
+        opening = []
         for rule in grammar.rules:
             if rule.weight <= 0:
+                continue
+            if connected and rule.is_starter:
+                opening.append((DirectedRule.build(rule, False, rings), float(rule.weight)))
                 continue
             # Forward only, a starter is used to create its component (rhs ∅ → lhs).
             dirs = (True, False) if both else ((False,) if rule.is_starter else (True,))
             for fwd in dirs:
+                if connected and _splits(rule, fwd):
+                    continue
                 by_level.setdefault(rule.priority, []).append(
                     (DirectedRule.build(rule, fwd, rings), float(rule.weight)))
         limits = limits or {}
@@ -73,7 +83,14 @@ class Schedule:
                 req[k, list(m.pattern.side.vertices)] = True
             levels.append(Level(p, moves, tuple(w for _, w in by_level[p]), limits.get(p), req))
         levels = tuple(levels)
-        return Schedule(levels, spo)
+        return Schedule(levels, spo, tuple(opening))
+
+    def opening_move(self, rng: np.random.Generator) -> DirectedRule | None:
+        """One starter, drawn by weight, for a connected grammar's first step."""
+        if not self.opening:
+            return None
+        w = np.asarray([w for _, w in self.opening], dtype=float)
+        return self.opening[int(rng.choice(len(w), p=w / w.sum()))][0]
 
     def moves(self) -> list[DirectedRule]:
         return [m for lv in self.levels for m in lv.moves]
@@ -135,3 +152,12 @@ class Schedule:
             if match is not None:
                 return level.moves[k], match
         return None
+
+
+def _splits(rule, forward: bool) -> bool:
+    """Whether the side a move produces has more pieces than the side it replaces: such a
+    move could cut a connected drawing in two. Wires (bare edges) join what they are glued to,
+    so they count as no piece."""
+    made, matched = (rule.rhs, rule.lhs) if forward else (rule.lhs, rule.rhs)
+    return len(made.components()) > len(matched.components())
+

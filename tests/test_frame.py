@@ -90,3 +90,35 @@ def test_a_castle_grows_inside_its_frame(castle, seed):
     failures = check_drawing(ex, host.to_drawing())
     assert failures == [], "\n".join(f.render() for f in failures[:3])
     assert host.check_consistency() == []
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4])
+def test_connected_grows_one_structure(seed):
+    """examples/tree.gg imports `branching`, which asks for `connected`."""
+    import networkx as nx
+    ex = load_example(Path(__file__).resolve().parent.parent / "examples" / "tree.gg")
+    assert ex.options.connected
+    from runtime.costs import SizeCost
+    eng = Engine(compile_example(ex).grammar, seed=seed, cost=SizeCost(80))
+    eng.run(80)
+    g = nx.Graph()
+    g.add_nodes_from(eng.host.vertices())
+    g.add_edges_from((v, w) for v, _, w, _ in eng.host.edges())
+    assert len(eng.host) > 20 and nx.number_connected_components(g) == 1
+    assert check_drawing(ex, eng.host.to_drawing()) == []
+
+
+@pytest.mark.parametrize("extent,message", [
+    ("0x9", "positive"), ("axb", "not W×H"), ("1e99x5", "positive"), ("5x5", "rigid part")])
+def test_bad_extents_are_user_errors(castle, extent, message):
+    from runtime.run_cmd import parse_extent
+    with pytest.raises(UserError, match=message):
+        parse_extent(extent, castle[1].grammar)
+
+
+def test_an_extent_stretches_the_frame(castle):
+    eng = Engine(castle[1].grammar, seed=4, extent=(2400.0, 900.0))
+    assert eng.host.frame.size == (2400.0, 900.0)
+    eng.run(20)
+    x0, y0, x1, y1 = eng.host.frame.box
+    assert all(x0 - 1e-6 <= eng.host.pos[v][0] <= x1 + 1e-6 for v in eng.host.vertices())
