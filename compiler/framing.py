@@ -4,7 +4,10 @@ The frame is the border of the space, not a shape to copy. Generation starts fro
 - no starter may create any part of it (a starter holding a border half-edge would draw a
   second, free-floating piece of border);
 - no rule may touch its corners, the vertices where the border turns. A rule replaces every
-  vertex of its matched side, so one holding a corner would move, delete or duplicate it.
+  vertex of its matched side, so one holding a corner would move, delete or duplicate it;
+- the only free-standing parts are those the example has free-standing (a window inside a
+  tower). A smaller complete graph the hierarchy met, say a roof with no tower under it, is
+  locally similar too, but a scene is made of structures that stand on its frame.
 Rules may still hold the vertices on its straight sides, where structures stand and lines end:
 the side runs on through them, and a rule's boundary keeps the border half-edges it cuts.
 """
@@ -16,11 +19,14 @@ from grammar_lang.frame import border_labels, border_primitives, corner_primitiv
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Rule
 
-from .canon import components
+from .apply import side_graph
+from .canon import canonical_key, components
 
 
-def frame_rules(rules: tuple[Rule, ...], example) -> tuple[tuple[Rule, ...], int]:
-    """The rules that leave the frame alone, and how many were dropped."""
+def frame_rules(rules: tuple[Rule, ...], example, own: set) -> tuple[tuple[Rule, ...], int]:
+    """The rules that leave the frame alone, and how many were dropped; `own` holds the
+    canonical keys of the example's own components."""
+    ring_len = [len(p.ring) for p in example.primitives]
     border = border_labels(example.labels, example.classes)
     corners = corner_primitives(example.primitives, example.labels, border)
     on_border = border_primitives(example.primitives, border)
@@ -28,7 +34,8 @@ def frame_rules(rules: tuple[Rule, ...], example) -> tuple[tuple[Rule, ...], int
     for r in rules:
         verts = set(r.lhs.vertices) | set(r.rhs.vertices)
         wires = {w >> 1 for w in r.lhs.wires + r.rhs.wires}
-        if r.is_starter and (verts & on_border or wires & border):
+        if r.is_starter and (verts & on_border or wires & border
+                             or canonical_key(side_graph(r.lhs), ring_len) not in own):
             continue
         if verts & corners:
             continue

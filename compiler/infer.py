@@ -482,7 +482,8 @@ class Inference:
         rules = self._rules()
         dropped = 0
         if self.frame is not None:
-            rules, dropped = frame_rules(rules, self.ex)
+            own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
+            rules, dropped = frame_rules(rules, self.ex, own)
             rules += frame_starters(self.ex, example_slots(self.ex))
         report = Report(
             example=self.ex.name,

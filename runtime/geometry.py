@@ -40,6 +40,7 @@ NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
 # and the stretches of bare side beside it take the rest, so their lengths are cheapest.
 FRAME_SIDE = 100.0
 SHRINK = 0.75
+GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = ("crossing", "coincident vertices")
 
@@ -65,6 +66,9 @@ class Solver:
         self.removed = set(change.removed)
         self.aim = self._aims()
         self.scale = self._local_scale()
+        # A part placed in a frame with nothing around it may also be drawn larger than the
+        # unit: a big module whose cycles close only with long sides (a space station's).
+        self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         u = host.t.unit
         self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
         self.clearance = max(self.clearance, 1e-9 * u)
@@ -157,7 +161,8 @@ class Solver:
                 for _ in range(1 if self.unique else self.J):
                     pos = self._sample(free, *system, rd, f)
                     if pos is None:
-                        f = f * SHRINK if self.last_failure in CROWDED else min(1.0, f / SHRINK)
+                        f = f * SHRINK if self.last_failure in CROWDED \
+                            else min(self.f_max, f / SHRINK)
                     else:
                         freed = tuple(v for v in free if v in host.prim)
                         yield Placement(pos, freed, rnd)

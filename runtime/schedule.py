@@ -156,8 +156,9 @@ class Schedule:
 
 def _splits(rule, forward: bool) -> bool:
     """Whether the side a move produces has more pieces than the side it replaces: such a
-    move could cut a connected drawing in two. Wires (bare edges) join what they are glued to,
-    so they count as no piece."""
+    move could cut a connected drawing in two. A piece is a connected group of vertices, or a
+    wire (a bare edge, which joins the two things it is glued to)."""
     made, matched = (rule.rhs, rule.lhs) if forward else (rule.lhs, rule.rhs)
-    return len(made.components()) > len(matched.components())
+    return len(made.components()) + len(made.wires) > \
+        len(matched.components()) + len(matched.wires)
 
