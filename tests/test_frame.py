@@ -17,6 +17,16 @@ ILLUSTRATIONS = Path(__file__).resolve().parent.parent.parent / "shared" / "corp
 NAMES = ["castle", "village", "flowers", "space-station"]
 
 
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+SCENES = {"castle": ILLUSTRATIONS / "castle.gg", "castle-scene": EXAMPLES / "castle-scene.gg"}
+
+
+@pytest.fixture(scope="module", params=sorted(SCENES))
+def scene(request):
+    ex = load_example(SCENES[request.param])
+    return ex, compile_example(ex)
+
+
 @pytest.fixture(scope="module")
 def castle():
     ex = load_example(ILLUSTRATIONS / "castle.gg")
@@ -52,8 +62,8 @@ def test_a_border_that_ends_in_the_air_beside_a_frame_is_located(tmp_path):
         find_frame(load_example(gg))
 
 
-def test_inference_never_creates_or_touches_the_frame(castle):
-    ex, res = castle
+def test_inference_never_creates_or_touches_the_frame(scene):
+    ex, res = scene
     g = res.grammar
     border = border_labels(ex.labels, ex.classes)
     corners = corner_primitives(ex.primitives, ex.labels, border)
@@ -70,11 +80,11 @@ def test_inference_never_creates_or_touches_the_frame(castle):
     assert parse_ggr(emit_ggr(g), "castle.ggr").header.frame == g.header.frame
 
 
-@pytest.mark.parametrize("seed", [1, 2, 3])
-def test_a_castle_grows_inside_its_frame(castle, seed):
-    ex, res = castle
+@pytest.mark.parametrize("seed", [1, 2])
+def test_a_scene_grows_inside_its_frame(scene, seed):
+    ex, res = scene
     eng = Engine(res.grammar, seed=seed)
-    eng.run(60)
+    eng.run(30)
     host = eng.host
     frame = res.grammar.header.frame
     corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)

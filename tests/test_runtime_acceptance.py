@@ -18,6 +18,8 @@ from conftest import CORPUS, ROOT, corpus_names
 
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import acceptance as acc  # noqa: E402
+from grammar_lang.frame import find_frame  # noqa: E402
+from grammar_lang.loader import load_example  # noqa: E402
 
 SEEDS = 20
 STEPS = 20            # per seed, plus the example's vertex count: enough to vary, cheap for 20
@@ -25,8 +27,11 @@ STEPS = 20            # per seed, plus the example's vertex count: enough to var
 # doubled one): their variety check is an xfail until they vary more.
 FEW_STRUCTURES = {"house-hollow.svg"}
 
+# Framed scenes grow into their frame, not tenfold: tests/test_frame.py checks them by the
+# scene criteria (one frame, corners pinned, everything inside, the verifier).
 EXAMPLES = [f"{n}.svg" for n in corpus_names()] + sorted(
-    p.name for p in (ROOT / "examples").glob("*.gg"))
+    p.name for p in (ROOT / "examples").glob("*.gg")
+    if find_frame(load_example(p)) is None)
 
 
 def _path(name: str) -> Path:
