@@ -69,9 +69,7 @@ class Solver:
         # A part placed in a frame with nothing around it may also be drawn larger than the
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
-        u = host.t.unit
-        self.clearance = min(0.02 * u, 0.25 * min((l[0] for l in host.t.lengths), default=u))
-        self.clearance = max(self.clearance, 1e-9 * u)
+        self.clearance = host.t.clearance
         self.failures: dict[str, int] = {}
         self.last_failure = ""
         self.unique = False

@@ -13,8 +13,11 @@ Fresh ids come from a counter and are never reused.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
+
+import numpy as np
 
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
@@ -46,6 +49,14 @@ class Tables:
     label_faces: tuple[tuple[str, str], ...]
     exterior: str
     unit: float
+
+    @functools.cached_property
+    def clearance(self) -> float:
+        """How far apart distinct vertices and edges must stay: a fiftieth of the unit, or a
+        quarter of the shortest edge any class allows, whichever is less (never zero)."""
+        u = self.unit
+        c = min(0.02 * u, 0.25 * min((l[0] for l in self.lengths), default=u))
+        return max(c, 1e-9 * u)
 
     @property
     def one_face_label(self) -> bool:
@@ -103,6 +114,7 @@ class Host:
         self.pos: dict[int, Point] = {}
         self.link: dict[int, list[Slot | None]] = {}
         self.by_prim: list[list[int]] = [[] for _ in self.t.rings]
+        self.prim_count = np.zeros(len(self.t.rings), dtype=np.int64)   # len(by_prim[p])
         self._where: dict[int, int] = {}
         self.next_id = 0
         self.grid = Grid(self.t.unit)
@@ -154,6 +166,7 @@ class Host:
         lst = self.by_prim[prim]
         self._where[v] = len(lst)
         lst.append(v)
+        self.prim_count[prim] += 1
         self.grid.add_point(v, p)
         self.n_open += len(self.link[v])
         self.next_id = max(self.next_id, v + 1)
@@ -164,6 +177,7 @@ class Host:
         prim, p = self.prim.pop(v), self.pos.pop(v)
         self.n_open -= len(self.link.pop(v))
         lst = self.by_prim[prim]
+        self.prim_count[prim] -= 1
         k = self._where.pop(v)
         last = lst.pop()
         if last != v:
@@ -347,6 +361,8 @@ class Host:
                 errs.append(f"vertex {v} misfiled in the primitive index")
         if sum(len(l) for l in self.by_prim) != len(self.prim):
             errs.append("primitive index holds stale vertices")
+        if [len(l) for l in self.by_prim] != self.prim_count.tolist():
+            errs.append("primitive counts disagree with the primitive index")
         if n_open != self.n_open or n_edges != self.n_edges or counts != self.label_count:
             errs.append("edge or open-slot counts disagree with a recount")
         return errs

@@ -19,6 +19,7 @@ creates its component (it runs ∅ → lhs) and never deletes one.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Callable
 
@@ -42,6 +43,10 @@ class Level:
     weights: tuple[float, ...]
     limit: int | None = None
     requires: np.ndarray | None = None     # move × primitive: the pattern uses that primitive
+
+    @functools.cached_property
+    def inverse_weights(self) -> np.ndarray:
+        return 1.0 / np.asarray(self.weights, dtype=float)
 
 
 @dataclass(frozen=True)
@@ -138,9 +143,8 @@ class Schedule:
         # Weighted sampling without replacement in one go: sorting by u^(1/w) draws the same
         # order as repeated weighted draws (Efraimidis & Spirakis). Moves needing a primitive
         # the host does not have are left out without a search.
-        w = np.asarray(level.weights, dtype=float)
-        keys = rng.random(len(w)) ** (1.0 / w)
-        absent = np.array([not lst for lst in host.by_prim], dtype=bool)
+        keys = rng.random(len(level.weights)) ** level.inverse_weights
+        absent = host.prim_count == 0
         if absent.any():
             keys[level.requires[:, absent].any(axis=1)] = -1.0
         return [int(k) for k in np.argsort(-keys, kind="stable") if keys[k] >= 0]

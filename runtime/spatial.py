@@ -25,6 +25,7 @@ class Grid:
         # Occupied columns and rows (point counts), for bounds and ray casts.
         self._cols: dict[int, int] = {}
         self._rows: dict[int, int] = {}
+        self._box: tuple[float, float, float, float] | None = None
 
     # --- cells ------------------------------------------------------------------------------
     def key(self, p: Point) -> tuple[int, int]:
@@ -89,8 +90,11 @@ class Grid:
         self._pts[pid] = p
         k = self.key(p)
         self._pt_cells.setdefault(k, set()).add(pid)
-        self._cols[k[0]] = self._cols.get(k[0], 0) + 1
-        self._rows[k[1]] = self._rows.get(k[1], 0) + 1
+        for d, key in ((self._cols, k[0]), (self._rows, k[1])):
+            n = d.get(key, 0)
+            d[key] = n + 1
+            if not n:
+                self._box = None          # a new column or row: the bounds may grow
 
     def remove_point(self, pid: Hashable) -> None:
         p = self._pts.pop(pid)
@@ -103,6 +107,7 @@ class Grid:
             d[key] -= 1
             if not d[key]:
                 del d[key]
+                self._box = None          # a column or row emptied: the bounds may shrink
 
     def points_near(self, x0: float, y0: float, x1: float, y1: float) -> list:
         out = []
@@ -114,15 +119,19 @@ class Grid:
         return sorted(out)
 
     def bounds(self) -> tuple[float, float, float, float] | None:
-        """The box of occupied point cells (cell-aligned), or None when empty."""
+        """The box of occupied point cells (cell-aligned), or None when empty. Kept until a
+        column or row of cells appears or empties, since it is asked for on every step."""
         if not self._cols:
             return None
-        c = self.cell
-        return (min(self._cols) * c, min(self._rows) * c,
-                (max(self._cols) + 1) * c, (max(self._rows) + 1) * c)
+        if self._box is None:
+            c = self.cell
+            self._box = (min(self._cols) * c, min(self._rows) * c,
+                         (max(self._cols) + 1) * c, (max(self._rows) + 1) * c)
+        return self._box
 
     def min_column(self) -> int | None:
-        return min(self._cols) if self._cols else None
+        b = self.bounds()
+        return None if b is None else round(b[0] / self.cell)
 
     def ray_left(self, p: Point, skip=(), tol: float = 0.0) -> tuple[Hashable, float] | None:
         """The first segment hit by the ray from `p` towards -x, at height p.y + 0⁺.
