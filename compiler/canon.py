@@ -99,6 +99,3 @@ def split(verts: Sequence[int], edges: Sequence[Edge]) -> list[Graph]:
     return out
 
 
-def multiset_key(graphs: Sequence[Graph], ring_len: Sequence[int]) -> Key:
-    """Key of a disjoint union of connected complete graphs."""
-    return tuple(sorted(canonical_key(g, ring_len) for g in graphs))

@@ -33,10 +33,6 @@ def opposite(token: int) -> int:
     return token ^ 1
 
 
-def is_turn(token: int) -> bool:
-    return token < 0
-
-
 def turns(n: int) -> Tokens:
     """∧ⁿ for n > 0, ∨⁻ⁿ for n < 0."""
     return (UP,) * n if n >= 0 else (DOWN,) * (-n)

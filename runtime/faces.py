@@ -37,11 +37,6 @@ class Faces:
     faces: tuple[Face, ...]               # faces[0] is the unbounded face
     face_of_cycle: np.ndarray             # cycle → the face it bounds (from inside or as a hole)
 
-    def face_of_half(self, h: int) -> int:
-        """The face to the left of half-edge h."""
-        return int(self.face_of_cycle[self.cycle_of[h]])
-
-
 def half_ends(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Start and end vertex of every half-edge, for edges given as an (m, 2) index array."""
     src = np.empty(2 * len(edges), dtype=np.int64)

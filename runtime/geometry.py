@@ -48,8 +48,6 @@ CROWDED = ("crossing", "coincident vertices")
 @dataclass(frozen=True)
 class Placement:
     positions: dict[int, Point]      # new and moved vertices
-    freed: tuple[int, ...]            # old vertices that were allowed to move
-    rounds: int                       # I-rounds used (1 = only new vertices were free)
 
 
 class Solver:
@@ -142,10 +140,9 @@ class Solver:
 
     def placements(self) -> Iterator[Placement]:
         """Candidate placements that pass every local test, at most I·J of them."""
-        host = self.host
         free = [v for v, _ in self.change.new]
         if not free and not self.bridges:
-            yield Placement({}, (), 1)
+            yield Placement({})
             return
         for rnd in range(1, self.I + 1):
             system = self._system(free)
@@ -162,8 +159,7 @@ class Solver:
                         f = f * SHRINK if self.last_failure in CROWDED \
                             else min(self.f_max, f / SHRINK)
                     else:
-                        freed = tuple(v for v in free if v in host.prim)
-                        yield Placement(pos, freed, rnd)
+                        yield Placement(pos)
             if rnd == self.I or not self._free_one(free):
                 return
 

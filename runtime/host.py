@@ -141,10 +141,6 @@ class Host:
     def neighbours(self, v: int) -> list[int]:
         return [s[0] for s in self.link[v] if s is not None]
 
-    def edge_key(self, v: int, i: int) -> Slot:
-        w = self.link[v][i]
-        return min((v, i), w)
-
     def edges(self) -> list[tuple[int, int, int, int]]:
         out = []
         for v in sorted(self.link):

@@ -66,25 +66,6 @@ class Grid:
                 out |= s
         return out
 
-    def segments_along(self, a: Point, b: Point) -> set:
-        """Ids of segments filed in the cells the segment ab passes through (sampled finely
-        enough not to skip a cell), rather than in its whole bounding box."""
-        c = self.cell
-        n = max(1, int(math.ceil(2 * max(abs(b[0] - a[0]), abs(b[1] - a[1])) / c)))
-        keys = set()
-        for k in range(n + 1):
-            t = k / n
-            x, y = a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])
-            i, j = math.floor(x / c), math.floor(y / c)
-            # A diagonal step can pass through a corner neighbour: take the 2×2 block.
-            keys.update(((i, j), (i - 1, j), (i, j - 1), (i + 1, j), (i, j + 1)))
-        out: set = set()
-        for k in keys:
-            s = self._seg_cells.get(k)
-            if s:
-                out |= s
-        return out
-
     # --- points -----------------------------------------------------------------------------
     def add_point(self, pid: Hashable, p: Point) -> None:
         self._pts[pid] = p
@@ -181,16 +162,6 @@ class Grid:
                 break
             col -= 1
         return None if best is None else (best[2], best[0])
-
-
-def segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool:
-    """Do segments ab and cd cross or touch? Orientation signs only: cheap."""
-    if (min(a[0], b[0]) > max(c[0], d[0]) or min(c[0], d[0]) > max(a[0], b[0])
-            or min(a[1], b[1]) > max(c[1], d[1]) or min(c[1], d[1]) > max(a[1], b[1])):
-        return False
-    o1, o2 = _orient(a, b, c), _orient(a, b, d)
-    o3, o4 = _orient(c, d, a), _orient(c, d, b)
-    return o1 * o2 <= 0 and o3 * o4 <= 0
 
 
 def seg_near(a: Point, b: Point, c: Point, d: Point, eps: float) -> bool:

@@ -1,0 +1,98 @@
+"""The paper's own examples (Table 1), compile and generation, beside the paper's figures.
+
+For each illustration in ../shared/corpus/illustrations the example is loaded and compiled
+(timed), then grown for the paper's N steps (or --steps) from its frame, with the default cost.
+The table shows our figures beside the paper's: compile time against its grammar time,
+total time against its total, hierarchy graphs and rules, output vertices against its output
+primitives (which count its merged rigid units, so they are smaller), the structures besides
+the frame, the share of the example's face labels present, and how much of the frame the
+drawing covers: the area of the convex hull of every vertex not on the frame, over the
+frame's area.
+
+    .venv/bin/python benchmarks/paper.py                  # the paper's N: slow today
+    .venv/bin/python benchmarks/paper.py --steps 200      # a quick look
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
+
+pin_blas_threads()
+
+ILLUSTRATIONS = ROOT.parent / "shared" / "corpus" / "illustrations"
+# name: (N, seed, paper total s, paper grammar s, hierarchy graphs, rules, output primitives)
+PAPER = {
+    "castle": (4000, 80, 9.5, 0.7, 1030, 88, 181),
+    "space-station": (4000, 22, 13.3, 0.3, 240, 25, 185),
+    "flowers": (2000, 42, 10.5, 0.04, 20, 8, 364),
+    "village": (4000, 65, 11.8, 0.5, 656, 55, 195),
+}
+
+
+def measure(name: str, steps: int | None) -> dict:
+    import networkx as nx
+    import shapely
+
+    from compiler.infer import compile_example
+    from grammar_lang.loader import load_example
+    from runtime.generate import Engine
+
+    n, seed, *_ = PAPER[name]
+    t0 = time.perf_counter()
+    example = load_example(ILLUSTRATIONS / f"{name}.gg")
+    result = compile_example(example)
+    t_compile = time.perf_counter() - t0
+    engine = Engine(result.grammar, seed=seed)
+    summary = engine.run(steps or n)
+    t_total = time.perf_counter() - t0
+    host = engine.host
+    g = nx.Graph()
+    g.add_nodes_from(v for v in host.vertices() if v not in host.pinned)
+    g.add_edges_from((v, w) for v, _, w, _ in host.edges()
+                     if v not in host.pinned and w not in host.pinned)
+    inner = [host.pos[v] for v in host.vertices() if host.prim[v] not in host.on_border]
+    covered = 0.0
+    if host.frame is not None and len(inner) >= 3:
+        w, h = host.frame.size
+        covered = shapely.MultiPoint(inner).convex_hull.area / (w * h)
+    faces = {f for prim in range(len(host.t.rings)) if host.prim_count[prim]
+             for f in host.t.left[prim] + host.t.right[prim]}
+    wanted = set(example.face_labels) - {example.exterior}
+    return {"name": name, "steps": summary.applied, "compile": t_compile, "total": t_total,
+            "graphs": result.report.hierarchy_graphs, "rules": len(result.grammar.rules),
+            "vertices": len(host), "components": nx.number_connected_components(g),
+            "labels": len(faces & wanted) / max(1, len(wanted)), "covered": covered,
+            "stop": summary.stop}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("names", nargs="*", default=sorted(PAPER), help="illustrations to run")
+    ap.add_argument("--steps", type=int, help="steps per drawing (default: the paper's N)")
+    args = ap.parse_args(argv)
+    print(f"machine: {platform.machine()}, {platform.processor() or platform.system()}, "
+          f"Python {platform.python_version()}")
+    print(f"{'example':<14}{'steps':>6}{'compile s':>10}{'(paper)':>8}{'total s':>9}{'(paper)':>8}"
+          f"{'graphs':>7}{'(paper)':>8}{'rules':>6}{'(paper)':>8}{'vertices':>9}{'(paper)':>8}"
+          f"{'parts':>6}{'labels':>7}{'covered':>8}")
+    for name in args.names:
+        r = measure(name, args.steps)
+        _, _, total, gram, graphs, rules, out = PAPER[name]
+        print(f"{name:<14}{r['steps']:>6}{r['compile']:>10.2f}{gram:>8}{r['total']:>9.1f}"
+              f"{total:>8}{r['graphs']:>7}{graphs:>8}{r['rules']:>6}{rules:>8}"
+              f"{r['vertices']:>9}{out:>8}{r['components']:>6}{r['labels']:>7.0%}"
+              f"{r['covered']:>8.1%}" + (f"  ({r['stop']})" if r["stop"] else ""), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
