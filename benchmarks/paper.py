@@ -84,8 +84,13 @@ def main(argv=None) -> int:
     print(f"{'example':<14}{'steps':>6}{'compile s':>10}{'(paper)':>8}{'total s':>9}{'(paper)':>8}"
           f"{'graphs':>7}{'(paper)':>8}{'rules':>6}{'(paper)':>8}{'vertices':>9}{'(paper)':>8}"
           f"{'parts':>6}{'labels':>7}{'covered':>8}")
+    from grammar_lang.diagnostics import UserError
     for name in args.names:
-        r = measure(name, args.steps)
+        try:
+            r = measure(name, args.steps)
+        except UserError as e:
+            print(f"{name:<14}  does not run: {str(e).splitlines()[0]}")
+            continue
         _, _, total, gram, graphs, rules, out = PAPER[name]
         print(f"{name:<14}{r['steps']:>6}{r['compile']:>10.2f}{gram:>8}{r['total']:>9.1f}"
               f"{total:>8}{r['graphs']:>7}{graphs:>8}{r['rules']:>6}{rules:>8}"
