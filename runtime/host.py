@@ -106,6 +106,15 @@ def unit_vector(degrees: float) -> Point:
     return (math.cos(ang), math.sin(ang))
 
 
+# Each journaled operation, as (method, indexes of its record's fields) to do it again or to
+# undo it: `add v prim p` is undone by `remove v`, `glue a b` by `unglue a`, `move v old new`
+# by `move v old`.
+_FORWARD = {"add": ("add_vertex", (1, 2, 3)), "remove": ("remove_vertex", (1,)),
+            "glue": ("glue", (1, 2)), "unglue": ("unglue", (1,)), "move": ("move", (1, 3))}
+_INVERSE = {"add": ("remove_vertex", (1,)), "remove": ("add_vertex", (1, 2, 3)),
+            "glue": ("unglue", (1,)), "unglue": ("glue", (1, 2)), "move": ("move", (1, 2))}
+
+
 class Host:
     def __init__(self, header: Header, tables: Tables | None = None):
         self.header = header
@@ -237,38 +246,17 @@ class Host:
 
     def undo_ops(self, ops: list[tuple]) -> None:
         """Reverse a journal (not itself journaled)."""
-        saved, self.journal = self.journal, None
-        try:
-            for op in reversed(ops):
-                kind = op[0]
-                if kind == "add":
-                    self.remove_vertex(op[1])
-                elif kind == "remove":
-                    self.add_vertex(op[1], op[2], op[3])
-                elif kind == "glue":
-                    self.unglue(op[1])
-                elif kind == "unglue":
-                    self.glue(op[1], op[2])
-                else:
-                    self.move(op[1], op[2])
-        finally:
-            self.journal = saved
+        self._replay(reversed(ops), _INVERSE)
 
     def redo_ops(self, ops: list[tuple]) -> None:
+        self._replay(ops, _FORWARD)
+
+    def _replay(self, ops, table) -> None:
         saved, self.journal = self.journal, None
         try:
             for op in ops:
-                kind = op[0]
-                if kind == "add":
-                    self.add_vertex(op[1], op[2], op[3])
-                elif kind == "remove":
-                    self.remove_vertex(op[1])
-                elif kind == "glue":
-                    self.glue(op[1], op[2])
-                elif kind == "unglue":
-                    self.unglue(op[1])
-                else:
-                    self.move(op[1], op[3])
+                method, args = table[op[0]]
+                getattr(self, method)(*(op[k] for k in args))
         finally:
             self.journal = saved
 
