@@ -26,6 +26,7 @@ from .geometry import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from .host import Host, Point, Tables
 from .landing import outer_label, sectors, spot
 from .matching import Match, iter_matches
+from .rejections import Rejection
 from .rewrite import Change, DirectedRule, commit, plan
 from .schedule import Schedule
 
@@ -51,7 +52,7 @@ class StepRecord:
 @dataclass
 class Outcome:
     applied: StepRecord | None
-    reason: str = ""                  # why not applied: 'cost', a geometry failure, 'terminal'
+    reason: Rejection | str = ""      # why not applied ("" when it was)
     # What step() proposed, applied or not (the REPL shows it).
     move: DirectedRule | None = None
     match: Match | None = None
@@ -64,7 +65,7 @@ class Summary:
     proposals: int = 0
     seconds: float = 0.0
     stop: str = ""
-    reasons: dict[str, int] = field(default_factory=dict)
+    reasons: dict[Rejection, int] = field(default_factory=dict)
     vertices: int = 0
     edges: int = 0
 
@@ -172,10 +173,10 @@ class Engine:
 
         choice = self.schedule.choose(self.host, self.rng, self.applied_by_level, screen)
         if choice is None:
-            return Outcome(None, "terminal")
+            return Outcome(None, Rejection.TERMINAL)
         level, move, match, refused = choice
         if refused:
-            return Outcome(None, "cost", move, match)
+            return Outcome(None, Rejection.COST, move, match)
         out = self.apply(move, match, priority=level.priority,
                          screened=self._stats_after(self._delta(move)))
         out.move, out.match = move, match
@@ -215,13 +216,13 @@ class Engine:
         host = self.host
         change = plan(host, move, match, self.schedule.spo)
         if host.pinned and not host.pinned.isdisjoint(change.removed):
-            return Outcome(None, "moves the frame")
+            return Outcome(None, Rejection.MOVES_FRAME)
         if use_cost:
             after = self.stats(change)
             if after != screened:
                 delta = self.cost.value(after) - self.cost.value(self.stats())
                 if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
-                    return Outcome(None, "cost")
+                    return Outcome(None, Rejection.COST)
         fixed = self._center(change)
         # A free-standing new component may go anywhere: a fresh place for every sample.
         floating = self._floating(change)
@@ -245,9 +246,9 @@ class Engine:
                 self.applied_by_level[lv] = self.applied_by_level.get(lv, 0) + 1
                 return Outcome(rec)
             host.undo_ops(ops)
-            solver._fail("face labels")
+            solver._fail(Rejection.FACE_LABELS)
         why = max(sorted(solver.failures), key=lambda k: solver.failures[k]) \
-            if solver.failures else "no placement"
+            if solver.failures else Rejection.NO_PLACEMENT
         return Outcome(None, why)
 
     def undo(self) -> StepRecord | None:
@@ -288,7 +289,7 @@ class Engine:
         stall = 0
         while s.applied < steps:
             out = self.step()
-            if out.reason == "terminal":
+            if out.reason == Rejection.TERMINAL:
                 s.stop = ("no rule applies to the empty drawing: the grammar has no starter "
                           "rule that creates a component" if len(self.host) == 0 else
                           "no rule applies (the drawing is terminal)")

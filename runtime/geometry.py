@@ -30,6 +30,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from .host import Host, Point
+from .rejections import Rejection
 from .rewrite import Change
 from .spatial import seg_near
 
@@ -42,7 +43,7 @@ FRAME_SIDE = 100.0
 SHRINK = 0.75
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
-CROWDED = ("crossing", "coincident vertices")
+CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
 
 
 @dataclass(frozen=True)
@@ -68,7 +69,7 @@ class Solver:
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         self.clearance = host.t.clearance
-        self.failures: dict[str, int] = {}
+        self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.unique = False
         # New edges between two old vertices (a wire replaced): constraints from the start.
@@ -134,7 +135,7 @@ class Solver:
     def adjacency(self, v: int):
         return self.change.adjacency(self.host, v, self.prim(v))
 
-    def _fail(self, why: str) -> None:
+    def _fail(self, why: Rejection) -> None:
         self.failures[why] = self.failures.get(why, 0) + 1
         self.last_failure = why
 
@@ -147,7 +148,7 @@ class Solver:
         for rnd in range(1, self.I + 1):
             system = self._system(free)
             if system is None:
-                self._fail("over-constrained")
+                self._fail(Rejection.OVER_CONSTRAINED)
             elif system[0] is None:
                 self._fail(system[1])
             else:
@@ -212,7 +213,7 @@ class Solver:
         for e in np.flatnonzero(fixed_rows):
             lo, hi, _, _ = t.lengths[edges[e][5]]
             if not (c[e] > tol and lo - tol <= c[e] <= hi + tol):
-                return None, "length fixed out of range"
+                return None, Rejection.LENGTH_FIXED
         # More generally a length is affine in the target, which ranges over a box (positions
         # within 3σ of their centre, lengths within their draw range): when a length's range
         # over that box misses its class, no sample can pass and the round is skipped.
@@ -223,7 +224,7 @@ class Solver:
             lo, hi, _, _ = t.lengths[lab]
             if centre[e] + spread[e] <= tol or centre[e] + spread[e] < lo - tol \
                     or centre[e] - spread[e] > hi + tol:
-                return None, "length out of range"
+                return None, Rejection.LENGTH_RANGE
         return edges, A, b, scale, Mp
 
     def _target_box(self, free, edges) -> tuple[np.ndarray, np.ndarray]:
@@ -319,12 +320,12 @@ class Solver:
         if rd.tiles:
             x = self._snap_tiles(x, nF, rd.tiles, A, b)
             if x is None:
-                self._fail("tile lengths")
+                self._fail(Rejection.TILES)
                 return None
             s = x[2 * nF:]
         tol = 1e-7 * t.unit
         if not np.all((s > tol) & (rd.lo - tol <= s) & (s <= rd.hi + tol)):
-            self._fail("edge length")
+            self._fail(Rejection.EDGE_LENGTH)
             return None
         pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
         frame = self.host.frame
@@ -332,7 +333,7 @@ class Solver:
         # every other vertex must be inside it.
         if frame is not None and not all(frame.contains(*p, self.clearance) for v, p in pos.items()
                                          if self.prim(v) not in self.host.on_border):
-            self._fail("outside the frame")
+            self._fail(Rejection.OUTSIDE_FRAME)
             return None
         if not self._planar(pos, edges):
             return None
@@ -376,11 +377,11 @@ class Solver:
         for k, (v, p) in enumerate(pts):
             for q in host.grid.points_near(p[0] - clr, p[1] - clr, p[0] + clr, p[1] + clr):
                 if q not in gone and _dist(p, host.pos[q]) < clr:
-                    self._fail("coincident vertices")
+                    self._fail(Rejection.COINCIDENT)
                     return False
             for w, p2 in pts[k + 1:]:
                 if _dist(p, p2) < clr:
-                    self._fail("coincident vertices")
+                    self._fail(Rejection.COINCIDENT)
                     return False
         # Edges: no crossing or touching except at a shared end.
         for k, (v, w, a, c) in enumerate(segs):
@@ -392,13 +393,13 @@ class Solver:
                 if x in (v, w) or y in (v, w):
                     continue
                 if seg_near(a, c, host.pos[x], host.pos[y], clr):
-                    self._fail("crossing")
+                    self._fail(Rejection.CROSSING)
                     return False
             for v2, w2, a2, c2 in segs[k + 1:]:
                 if v2 in (v, w) or w2 in (v, w):
                     continue
                 if seg_near(a, c, a2, c2, clr):
-                    self._fail("crossing")
+                    self._fail(Rejection.CROSSING)
                     return False
         return True
 

@@ -18,6 +18,7 @@ from grammar_lang.graph import Side, face_walk
 
 from .drawing import load_drawing
 from .matching import find_match
+from .rejections import Rejection
 from .repl import Quit, Session
 from .verifier import check_drawing
 
@@ -258,7 +259,7 @@ def _step(session: Session, args: list[str]):
     try:
         for k in range(n):
             out = e.step()
-            if out.reason == "terminal":
+            if out.reason == Rejection.TERMINAL:
                 session.out.line("no rule applies: the drawing is terminal")
                 break
             rec = out.applied

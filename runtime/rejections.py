@@ -1,0 +1,29 @@
+"""Why a proposal was not applied: one name for each reason, counted in a run's summary.
+
+A `str` enum, so a reason prints, sorts, compares and hashes as its text ("edge length"),
+which is what the summary, the REPL and scripts reading them see.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+
+
+class Rejection(str, Enum):
+    TERMINAL = "terminal"                      # no move of any level applies
+    COST = "cost"                              # the Metropolis coin refused it
+    MOVES_FRAME = "moves the frame"            # it would remove a frame corner
+    OVER_CONSTRAINED = "over-constrained"      # A x = b has no solution
+    LENGTH_FIXED = "length fixed out of range"  # the system fixes a length outside its class
+    LENGTH_RANGE = "length out of range"       # no target in the sampling box can fit
+    TILES = "tile lengths"                     # no whole number of tiles fits
+    EDGE_LENGTH = "edge length"                # a sample broke a class's range
+    OUTSIDE_FRAME = "outside the frame"
+    COINCIDENT = "coincident vertices"
+    CROSSING = "crossing"                      # an edge crosses or touches another
+    FACE_LABELS = "face labels"                # a face would get the wrong label
+    NO_PLACEMENT = "no placement"
+
+    __str__ = str.__str__
+    __format__ = str.__format__
+    __hash__ = str.__hash__
