@@ -6,14 +6,19 @@ fast sample of the corpus in the test suite, every drawing checked by the verifi
 
 from __future__ import annotations
 
+import sys
 from functools import lru_cache
+
 import pytest
 
 from runtime.costs import SizeCost
 from runtime.generate import Engine
 from runtime.verifier import check_drawing
 
-from conftest import CORPUS
+from conftest import CORPUS, ROOT
+
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from acceptance import structure  # noqa: E402  (the sweep's own structure key)
 
 SAMPLE = ["angle.svg", "branches.svg", "a.svg", "curl.svg", "square-filled.svg", "l.svg"]
 
@@ -24,18 +29,6 @@ def _compiled(name: str):
     from grammar_lang.loader import load_example
     example = load_example(CORPUS / name)
     return example, compile_example(example).grammar
-
-
-def _structure(engine: Engine) -> tuple:
-    """A drawing's structure up to ids and positions: primitive counts per component."""
-    h = engine.host
-    comps = []
-    for comp in h.components():
-        counts = [0] * len(h.t.rings)
-        for v in comp:
-            counts[h.prim[v]] += 1
-        comps.append(tuple(counts))
-    return tuple(sorted(comps))
 
 
 @pytest.mark.parametrize("name", SAMPLE)
@@ -51,7 +44,7 @@ def test_corpus_grammars_grow_valid_varied_drawings(name):
         failures = check_drawing(example, drawing)
         assert failures == [], f"seed {seed}: " + "\n".join(f.render() for f in failures[:3])
         assert engine.host.check_consistency() == []
-        structures.add(_structure(engine))
+        structures.add(structure(engine))
         if grows:
             assert len(engine.host) >= min(10 * n_example, 100)
     assert len(structures) >= (3 if grows else 1)
