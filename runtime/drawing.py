@@ -43,7 +43,8 @@ class Drawing:
         doc = {
             "format": FORMAT,
             **{k: v for k, v in sorted(self.meta.items()) if k not in ("format", "vertices", "edges")},
-            "vertices": [{"id": v.id, "x": _num(v.x), "y": _num(v.y)} for v in self.vertices],
+            "vertices": [{"id": v.id, "x": round_coordinate(v.x), "y": round_coordinate(v.y)}
+                         for v in self.vertices],
             "edges": [
                 {"u": e.u, "v": e.v, "left": e.left, "right": e.right, "class": e.cls,
                  **({"label": e.label} if e.label is not None else {})}
@@ -56,7 +57,7 @@ class Drawing:
         atomic_write(path, self.to_json())
 
 
-def _num(x: float) -> float:
+def round_coordinate(x: float) -> float:
     # A fixed precision keeps files byte-identical across platforms and runs.
     r = round(float(x), 6)
     return 0.0 if r == 0 else r

@@ -25,7 +25,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help=f"rule applications per drawing (default {DEFAULT_STEPS})")
     p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
     p.add_argument("--out", metavar="PATH",
-                   help="output file, .svg or .json by extension (default: FILE's name + .svg)")
+                   help="output file, .svg, .json or .graphml by extension "
+                        "(default: FILE's name + .svg)")
     p.add_argument("--count", type=int, default=1, metavar="K",
                    help="write K drawings with seeds S…S+K−1, named PATH-0001.svg …")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="parallel processes")
@@ -150,6 +151,10 @@ def write_drawing(drawing, grammar: Grammar, path: str) -> None:
     if path.lower().endswith(".json"):
         drawing.save(path)
         return
+    if path.lower().endswith(".graphml"):
+        from .graphml_out import write_graphml
+        write_graphml(drawing, path)
+        return
     from .svg_out import write_svg
     write_svg(drawing, grammar.header, path)
 
@@ -162,9 +167,9 @@ def run_command(args: argparse.Namespace) -> int:
             raise error(f"--{flag} {getattr(args, flag)} is out of range", None,
                         f"--{flag} takes a whole number of at least {0 if flag == 'steps' else 1}")
     out = args.out or str(Path(Path(args.file).name).with_suffix(".svg"))
-    if Path(out).suffix.lower() not in (".svg", ".json"):
+    if Path(out).suffix.lower() not in (".svg", ".json", ".graphml"):
         raise error(f"--out {out}: unknown output format", None,
-                    "end the name with .svg or .json")
+                    "end the name with .svg, .json or .graphml")
     grammar = load_grammar(args.file)
     from .costs import parse_cost
     # Validate the cost spec once, before any work.
