@@ -44,3 +44,19 @@ def test_rule_sides_as_graphs_keep_the_labels_of_their_slots(name):
                 t = rings[side.vertices[v]][i]
                 assert rings[side.vertices[w]][j] == t ^ 1
                 assert a["label"] == grammar.header.labels[bd.label_of(t)].name
+
+
+def test_the_documented_python_example_runs(tmp_path):
+    """docs/drawing-format.md's networkx example, run as a user would, on a real drawing."""
+    import re
+    import subprocess
+    import sys
+    from conftest import ROOT
+    doc = (ROOT / "docs" / "drawing-format.md").read_text()
+    (snippet,) = re.findall(r"```python\n(.*?)```", doc, re.S)
+    assert main([str(ROOT / "examples" / "tree.gg"), "--steps", "40", "--seed", "1", "--quiet",
+                 "--out", str(tmp_path / "out" / "tree.json")]) == 0
+    res = subprocess.run([sys.executable, "-c", snippet], cwd=tmp_path, capture_output=True,
+                         text=True, env={"PYTHONPATH": str(ROOT)}, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.strip() == "1"          # the tree is connected
