@@ -53,7 +53,7 @@ def test_the_documented_python_example_runs(tmp_path):
     import sys
     from conftest import ROOT
     doc = (ROOT / "docs" / "drawing-format.md").read_text()
-    (snippet,) = re.findall(r"```python\n(.*?)```", doc, re.S)
+    (snippet,) = [b for b in re.findall(r"```python\n(.*?)```", doc, re.S) if "drawing_graph" in b]
     assert main([str(ROOT / "examples" / "tree.gg"), "--steps", "40", "--seed", "1", "--quiet",
                  "--out", str(tmp_path / "out" / "tree.json")]) == 0
     res = subprocess.run([sys.executable, "-c", snippet], cwd=tmp_path, capture_output=True,
