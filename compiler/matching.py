@@ -48,6 +48,9 @@ class Matcher:
         # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
         # group fits a target or not as a whole.
         self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
+        # Each group under its smallest token, with its number of half-edges: a target can
+        # only use groups whose tokens it has, so a search looks only under its own tokens.
+        self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int]]] = {}
         self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
         self._memo: dict[Toks, tuple[int, Match | None]] = {}
@@ -58,6 +61,10 @@ class Matcher:
         piece = Piece(piece.node, piece.toks, piece.rank, tuple(sorted(c.items())))
         self.pieces[piece.node] = piece
         self.by_string.setdefault(cyclic_canon(piece.toks), []).append(piece.node)
+        if piece.counts not in self.by_counts:
+            least = piece.counts[0][0] if piece.counts else None
+            self.by_least.setdefault(least, []).append(
+                (piece.counts, sum(n for _, n in piece.counts)))
         self.by_counts.setdefault(piece.counts, []).append(piece.node)
         self.version += 1
 
@@ -101,12 +108,12 @@ class Matcher:
         if hit is not None and hit[0] == self.version:
             return [p for p in hit[1] if p.node in self.pieces]
         out = []
-        for counts, ids in self.by_counts.items():
-            if sum(n for _, n in counts) > max_half:
-                continue
-            if all(have.get(t, 0) >= n for t, n in counts):
-                out.extend(self.pieces[i] for i in ids if i in self.pieces)
-        out.sort(key=lambda p: (-len(p.toks), p.rank))
+        for least in (None, *have):
+            for counts, size in self.by_least.get(least, ()):
+                if size <= max_half and all(have.get(t, 0) >= n for t, n in counts):
+                    out.extend(self.pieces[i] for i in self.by_counts[counts]
+                               if i in self.pieces)
+        out.sort(key=lambda p: (-len(p.toks), p.rank))    # a total order: ranks are unique
         self._cands[key] = (self.version, out)
         return out
 
