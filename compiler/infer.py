@@ -27,7 +27,7 @@ from typing import Callable
 from grammar_lang import __version__
 from grammar_lang import boundary as bd
 from grammar_lang.example import Example
-from grammar_lang.frame import Frame, find_frame
+from grammar_lang.frame import Frame, border_labels, border_primitives, find_frame
 from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
@@ -452,9 +452,13 @@ class Inference:
         graphs = example_graphs(self.ex)
         if not graphs:
             return
+        on_border = set() if self.frame is None else \
+            border_primitives(self.ex.primitives, border_labels(self.ex.labels, self.ex.classes))
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
+            if on_border.intersection(g.verts):
+                continue      # it holds the frame, which generation starts from instead
             grammar = Grammar(header(self.ex, False), self._rules())
             # Past the time limit a component simply becomes a starter, which is always sound.
             deadline = float("inf") if self.limits.seconds is None \
