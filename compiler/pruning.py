@@ -32,6 +32,8 @@ from __future__ import annotations
 from typing import Sequence
 
 import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import connected_components
 
 from grammar_lang import boundary as bd
 
@@ -116,15 +118,9 @@ class TurnAnalysis:
             for b in self.leaving.get((q, (j + 1) % ring), ()):
                 if b not in self.dead and (a, b) not in self.dead_pairs:
                     w[a, b] = turn
-        reach = np.isfinite(w) | np.eye(n, dtype=bool)
-        for k in range(n):
-            reach |= reach[:, k:k + 1] & reach[k:k + 1, :]
-        self.comp = np.full(n, -1)
-        c = 0
-        for a in range(n):
-            if self.comp[a] < 0:
-                self.comp[np.nonzero(reach[a] & reach[:, a])[0]] = c
-                c += 1
+        # Moves that can follow each other both ways: the strong components of the move graph.
+        _, self.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
+                                            connection="strong")
         self.low = self._floyd(w)                                  # −inf: a negative cycle
         self.high = -self._floyd(np.where(np.isfinite(w), -w, INF))  # +inf: a positive cycle
         self._solved = True
