@@ -64,6 +64,7 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
     keep = [e for e in slot_edges
             if prims[e[0]] not in corners and prims[e[2]] not in corners
             and bd.label_of(rings[e[0]][e[1]]) not in bare]
+    ring_len = [len(r) for r in prim_rings]
     rules, seen = [], set()
     for comp in components(len(prims), keep):
         if prims[comp[0]] in corners:
@@ -71,7 +72,7 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
         side = _component_side(comp, keep, prims, prim_rings)
         rule = None if side is None else _standing_rule(side, prim_rings, len(rules))
         if rule is not None:
-            key = (side.vertices, side.edges, rule.lhs.tokens(prim_rings))
+            key = canonical_key(side_graph(rule.lhs), ring_len)    # one rule per shape
             if key not in seen:
                 seen.add(key)
                 rules.append(rule)
