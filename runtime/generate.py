@@ -113,9 +113,8 @@ class Engine:
         for _ in range(OPENING_TRIES if match is not None else 0):
             if self.apply(move, match, use_cost=False).applied is not None:
                 return
-        else:
-            raise error(f"the connected grammar's starter {move.rule.name} could not be placed",
-                        None, "check the frame's extent, or leave `connected` out")
+        raise error(f"the connected grammar's starter {move.rule.name} could not be placed",
+                    None, "check the frame's extent, or leave `connected` out")
 
     def reseed(self, seed: int) -> None:
         """Seed the random choices from here on; the drawing and history stay."""
