@@ -21,6 +21,7 @@ from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from . import boundary as bd
+from . import ggr_free
 from .diagnostics import Diagnostic, Span, UserError, did_you_mean
 from .example import EdgeLabel, Primitive
 from .fileio import read_text
@@ -273,7 +274,8 @@ class _Builder:
     def build(self, tree: Tree) -> Grammar:
         singles: dict[str, Tree] = {}
         lists: dict[str, list[Tree]] = {k: [] for k in
-                                        ("edge_class", "label", "primitive", "decorate", "rule")}
+                                        ("edge_class", "label", "primitive", "decorate", "rule",
+                                         "attribute", "production")}
         for stmt in tree.children:
             if stmt.data in lists:
                 lists[stmt.data].append(stmt)
@@ -294,7 +296,26 @@ class _Builder:
         self._raise_errors()
         rules = self._rules(lists["rule"], header)
         self._raise_errors()
-        return Grammar(header, tuple(rules))
+        productions, start = self._productions(lists, singles, header, rules)
+        self._raise_errors()
+        return Grammar(header, tuple(rules), productions, start)
+
+    def _productions(self, lists, singles, header: Header, rules: list[Rule]):
+        """The hand-written productions and start graph (ggr_free), after the header."""
+        if not lists["production"] and "start_graph" not in singles:
+            return (), None
+        if rules:
+            raise self.fail("this file holds both angle-graph rules and productions",
+                            rules[0].span, "one file runs on one engine: keep the 'rule's or "
+                            "the 'production's (mixing them is not supported yet)")
+        reader = ggr_free.FreeReader(self)
+        ctx = ggr_free.context_of(header)
+        productions = self._defined(reader.production, lists["production"], ctx)
+        self._unique(lists["production"], "production")
+        start = self._guard(reader.start, singles["start_graph"], ctx) \
+            if "start_graph" in singles else None
+        return tuple(productions), start
+
 
     def _raise_errors(self) -> None:
         if self.errors:
@@ -391,8 +412,15 @@ class _Builder:
         prims = self._defined(self._primitive, lists["primitive"], labels, label_ids)
         self._unique(lists["primitive"], "primitive")
         fields["primitives"] = tuple(prims)
-        targets = {"face": known_faces, "edge": {c.name for c in classes} | {DEFAULT_CLASS},
-                   "vertex": {p.name for p in prims}}
+        fields["vertex_labels"] = self._label_list(singles.get("vertex_labels"))
+        fields["edge_labels"] = self._label_list(singles.get("edge_labels"))
+        declared: dict = {}
+        reader = ggr_free.FreeReader(self)
+        fields["attributes"] = tuple(a for a in (self._guard(reader.attribute, n, declared)
+                                                 for n in lists["attribute"]) if a)
+        targets = {"face": known_faces,
+                   "edge": {c.name for c in classes} | {DEFAULT_CLASS} | set(fields["edge_labels"]),
+                   "vertex": {p.name for p in prims} | set(fields["vertex_labels"])}
         fields["decorations"] = tuple(d for d in (self._guard(self._decoration, n, targets)
                                                   for n in lists["decorate"]) if d)
         if "frame" in singles:
@@ -413,6 +441,15 @@ class _Builder:
         if len(corners) < 3:
             self.fail("a frame has at least three corners", self._first_token(node))
         return Frame(tuple(corners))
+
+    def _label_list(self, node: Tree | None) -> tuple[str, ...]:
+        out: list[str] = []
+        for tok in node.children if node is not None else ():
+            label = self.name(tok)
+            if label in out:
+                self.fail(f"label '{label}' is listed twice", tok)
+            out.append(label)
+        return tuple(out)
 
     def _unique(self, nodes: list[Tree], what: str) -> None:
         seen: dict[str, int] = {}
@@ -860,7 +897,8 @@ class _Context:
 _STATUS = {"complete": True, "limited": False, "unknown": None}
 _KEYWORD = {"version": "ggr", "checksum": "checksum", "source": "source", "compiler": "compiler",
             "mode": "mode", "status": "status", "unit": "unit", "exterior": "exterior",
-            "faces": "faces", "options": "options", "limits": "limits", "frame": "frame"}
+            "faces": "faces", "options": "options", "limits": "limits", "frame": "frame",
+            "vertex_labels": "vertices", "edge_labels": "edges", "start_graph": "start"}
 _OPTION_KEYS = {"angle_tolerance": "float", "snap_angle": "float", "merge_distance": "optfloat",
                 "unit": "optfloat", "connected": "bool", "no_loops": "bool"}
 _LIMIT_KEYS = {"generations": "int", "half_edges": "int", "graphs": "int", "seconds": "float"}

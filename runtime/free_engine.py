@@ -1,0 +1,419 @@
+"""Run hand-written productions (grammar_lang.free_rules) on an attributed host graph.
+
+A step takes the lowest priority level that has not reached its limit and has an applicable
+production; among its productions one is drawn by weight, a match is found (free_match), the
+conditions are checked, a daughter is drawn by weight, the `let`s and `set`s are evaluated
+against the match as it is, the new vertices are placed, and only then is the host edited: so a
+step that fails (an evaluation error, a coordinate that is not finite, a dangling edge in DPO)
+changes nothing, and its reason is counted. Positions of new vertices without a `set` come
+from their pattern positions carried by the similarity (barycentre, rotation by total least
+squares, scale by extent) that takes the mother graph's pattern onto the match (§4.3).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from grammar_lang.expr_eval import Scope, compile_expr
+from grammar_lang.expr_functions import EvalError
+from grammar_lang.free_rules import Daughter, FSide, Production
+from grammar_lang.diagnostics import error
+from grammar_lang.ggr_free import MAX_COORDINATE, context_of, edge_key, face_key, lhs_scope
+from grammar_lang.rules import Grammar
+
+from .free_host import Element, FreeHost
+from .free_match import Binding, Matcher
+from .generate import MAX_STALL, Summary
+
+MATCH_TRIES = 64    # matches tried per production and step before it counts as not applicable
+
+
+class _Reject(Exception):
+    """This match cannot be rewritten; the reason is counted."""
+
+
+class _Env:
+    __slots__ = ("host", "elements", "values", "rng")
+
+    def __init__(self, host: FreeHost, elements: dict[str, Element], rng):
+        self.host, self.elements, self.values, self.rng = host, elements, {}, rng
+
+    def get(self, name: str, key: str):
+        el = self.elements[name]
+        value = el.attrs.get(key)
+        return self.host.derived(el, key) if value is None else value
+
+
+@dataclass
+class _Compiled:
+    production: Production
+    matcher: Matcher
+    conditions: tuple
+    lets: tuple
+    daughters: tuple        # (daughter, lets, sets, similarity anchors)
+
+
+class FreeEngine:
+    def __init__(self, grammar: Grammar, seed: int = 0, limits: dict[int, int] | None = None):
+        self.grammar = grammar
+        self.defaults = {k: {a.name: a.value for a in grammar.header.attributes if a.kind == k}
+                         for k in ("vertex", "edge", "face")}
+        self.limits = dict(limits or {})
+        self.context = context_of(grammar.header)
+        self.compiled = [self._compile(p) for p in grammar.productions]
+        self.levels = sorted({p.priority for p in grammar.productions})
+        self.dpo = grammar.header.mode == "dpo"
+        self.reset(seed)
+
+    def reset(self, seed: int) -> None:
+        self.rng = random.Random(seed)
+        self.host = FreeHost()
+        self.step_no = 0
+        self.applied: dict[int, int] = {}
+        self.reasons: dict[str, int] = {}
+        if self.grammar.start is not None:
+            start = self._compile(self.grammar.start)
+            env = _Env(self.host, {}, self.rng)
+            try:
+                self._rewrite(start, start.daughters[0], Binding({}, [], [], set()), env)
+            except (EvalError, _Reject) as exc:
+                raise error(f"the start graph cannot be built: {exc}",
+                            grammar_start_span(self.grammar)) from None
+
+    # -- compilation --
+
+    def _compile(self, p: Production) -> _Compiled:
+        scope = lhs_scope(p.lhs, self.context)
+        conditions = tuple(self._fn(c.expr, scope) for c in p.conditions)
+        lets = tuple((l.name, self._fn(l.expr, scope, l.name, l.type)) for l in p.lets)
+        daughters = []
+        for d in p.daughters:
+            local = Scope(dict(scope.variables), scope.elements)
+            dl = tuple((l.name, self._fn(l.expr, local, l.name, l.type)) for l in d.lets)
+            sets = tuple((a.element, a.key, self._fn(a.expr, local)) for a in d.sets)
+            daughters.append((d, dl, sets))
+        return _Compiled(p, Matcher(p.lhs, p.match == "oldest"), conditions, lets,
+                         tuple(daughters))
+
+    @staticmethod
+    def _fn(expr, scope: Scope, define: str | None = None, t=None):
+        # Types were checked when the file loaded; this builds the closures again.
+        _, fn = compile_expr(expr, scope)
+        if define is not None:
+            scope.variables[define] = t
+        return fn
+
+    # -- running --
+
+    def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
+            per_step: list | None = None) -> Summary:
+        s = Summary()
+        t0 = time.perf_counter()
+        stall = 0
+        s.stop = f"reached {steps} steps"
+        while s.applied < steps:
+            result = self.step()
+            s.proposals += 1
+            if result is None:
+                s.stop = "no production applies (terminal graph)"
+                break
+            if result:
+                s.applied += 1
+                stall = 0
+                if per_step is not None:
+                    per_step.append((time.perf_counter(), self.host.size))
+                if progress is not None and s.applied % 16 == 0:
+                    progress(self.summary(s))
+            else:
+                stall += 1
+                if stall >= MAX_STALL:
+                    s.stop = f"{MAX_STALL} rejected steps in a row"
+                    break
+        s.seconds = time.perf_counter() - t0
+        return self.summary(s)
+
+    def summary(self, s: Summary) -> Summary:
+        s.reasons = dict(sorted(self.reasons.items()))
+        s.rejected = sum(self.reasons.values())
+        s.vertices, s.edges = self.host.counts["vertex"], self.host.counts["edge"]
+        return s
+
+    def step(self) -> bool | None:
+        """Apply one production. True: applied; False: every match tried was rejected;
+        None: nothing applies (or every level is at its limit)."""
+        rejected = False
+        for level in self.levels:
+            if self.applied.get(level, 0) >= self.limits.get(level, math.inf):
+                continue
+            todo = [c for c in self.compiled if c.production.priority == level]
+            while todo:
+                c = self._draw(todo)
+                todo.remove(c)
+                outcome = self._try(c)
+                if outcome:
+                    self.applied[level] = self.applied.get(level, 0) + 1
+                    self.step_no += 1
+                    return True
+                rejected = rejected or outcome is False
+            if rejected:
+                return False
+        return False if rejected else None
+
+    def _draw(self, todo: list[_Compiled]) -> _Compiled:
+        weights = [c.production.weight for c in todo]
+        total = sum(weights)
+        if total <= 0:
+            return todo[0]
+        x = self.rng.random() * total
+        for c, w in zip(todo, weights):
+            x -= w
+            if x < 0:
+                return c
+        return todo[-1]
+
+    def _try(self, c: _Compiled) -> bool | None:
+        """True: applied; False: matches existed but each was rejected; None: no match."""
+        found = False
+        for k, b in enumerate(c.matcher.matches(self.host, self.rng)):
+            if k >= MATCH_TRIES:
+                break
+            env = _Env(self.host, self._elements(c.production.lhs, b), self.rng)
+            try:
+                for name, fn in c.lets:
+                    env.values[name] = fn(env)
+                if not all(fn(env) for fn in c.conditions):
+                    continue
+                if c.production.spatial and not _spatial_ok(c.production.lhs, b, self.host):
+                    continue
+                found = True
+                self._rewrite(c, self._pick(c), b, env)
+                return True
+            except (EvalError, _Reject) as exc:
+                found = True
+                reason = str(exc) if isinstance(exc, _Reject) else f"evaluation: {exc}"
+                self.reasons[reason] = self.reasons.get(reason, 0) + 1
+        return False if found else None
+
+    def _pick(self, c: _Compiled):
+        if len(c.daughters) == 1:
+            return c.daughters[0]
+        weights = [d[0].weight for d in c.daughters]
+        x = self.rng.random() * sum(weights)
+        for d, w in zip(c.daughters, weights):
+            x -= w
+            if x < 0:
+                return d
+        return c.daughters[-1]
+
+    def _elements(self, lhs: FSide, b: Binding) -> dict[str, Element]:
+        els = {name: self.host.elements[i] for name, i in b.vertices.items()}
+        for e, i in zip(lhs.edges, b.edges):
+            if e.name:
+                els[e.name] = self.host.elements[i]
+        for f, i in zip(lhs.faces, b.faces):
+            if f.name:
+                els[f.name] = self.host.elements[i]
+        return els
+
+    # -- rewriting --
+
+    def _rewrite(self, c: _Compiled, daughter, b: Binding, env: _Env) -> None:
+        d, lets, sets = daughter
+        for name, fn in lets:
+            env.values[name] = fn(env)
+        values = [(el, key, fn(env)) for el, key, fn in sets]
+        lhs = c.production.lhs
+        placed = self._place(d, lhs, b, values)
+        doomed = self._doomed(d, lhs, b)
+        changed = self._changes_something(d, lhs, b, values, doomed)
+        if not changed:
+            raise _Reject("no change: the match would stay as it was")
+        self._edit(d, b, values, placed, doomed)
+
+    def _place(self, d: Daughter, lhs: FSide, b: Binding, values) -> dict[str, list[float]]:
+        pos: dict[str, list[float]] = {}
+        for el, key, value in values:
+            if key in ("x", "y", "pos") and d.side.vertex(el) is not None:
+                p = pos.setdefault(el, [math.nan, math.nan])
+                if key == "pos":
+                    p[0], p[1] = value
+                else:
+                    p[0 if key == "x" else 1] = value
+        auto = [v for v in d.side.vertices if not v.kept and
+                (v.name not in pos or any(math.isnan(c) for c in pos[v.name]))]
+        if auto:
+            transform = _similarity(lhs, b, self.host)
+            for v in auto:
+                p = pos.setdefault(v.name, [math.nan, math.nan])
+                q = transform(v.pattern)
+                p[0] = q[0] if math.isnan(p[0]) else p[0]
+                p[1] = q[1] if math.isnan(p[1]) else p[1]
+        for name, p in pos.items():
+            if d.side.vertex(name).kept:    # a kept vertex moves only where it is set
+                old = self.host.pos(b.vertices[name])
+                p[0] = old[0] if math.isnan(p[0]) else p[0]
+                p[1] = old[1] if math.isnan(p[1]) else p[1]
+            if not all(math.isfinite(x) and abs(x) <= MAX_COORDINATE for x in p):
+                raise _Reject("a coordinate that is not finite (or beyond ±1e12)")
+        return pos
+
+    def _doomed(self, d: Daughter, lhs: FSide, b: Binding) -> list[int]:
+        """Host ids of the match that the daughter does not keep, edges and faces first."""
+        keep_e = {(edge_key(e), e.directed) for e in d.side.edges}
+        keep_f = {face_key(f) for f in d.side.faces}
+        out = [i for e, i in zip(lhs.edges, b.edges) if (edge_key(e), e.directed) not in keep_e]
+        out += [i for f, i in zip(lhs.faces, b.faces) if face_key(f) not in keep_f]
+        gone = [b.vertices[v.name] for v in lhs.vertices if d.side.vertex(v.name) is None]
+        dead = set(out)
+        for v in gone:
+            dangling = [k for k in self.host.incident[v] if k not in dead]
+            if dangling and self.dpo:
+                raise _Reject("dangling: a deleted vertex has edges outside the match (DPO)")
+            out += dangling     # SPO: they go with it
+            dead.update(dangling)
+        return out + gone
+
+    def _changes_something(self, d: Daughter, lhs: FSide, b: Binding, values, doomed) -> bool:
+        if doomed or any(not v.kept for v in d.side.vertices):
+            return True
+        host = self.host
+        old_e = {(edge_key(e), e.directed): i for e, i in zip(lhs.edges, b.edges)}
+        old_f = {face_key(f): i for f, i in zip(lhs.faces, b.faces)}
+        for key, label in [((edge_key(e), e.directed), e.label) for e in d.side.edges]:
+            if key not in old_e or host.elements[old_e[key]].label != label:
+                return True
+        for f in d.side.faces:
+            i = old_f.get(face_key(f))
+            if i is None or host.elements[i].label != f.label:
+                return True
+        els = self._elements(lhs, b)
+        if any(v.label is not None and els[v.name].label != v.label for v in d.side.vertices):
+            return True
+        return any(el not in els or env_value(host, els[el], key) != value
+                   for el, key, value in values)
+
+    def _edit(self, d: Daughter, b: Binding, values, placed, doomed) -> None:
+        host, gen = self.host, self.step_no
+        for i in doomed:
+            if i in host.elements:
+                host.remove(i)
+        ids = dict(b.vertices)
+        for v in d.side.vertices:
+            if v.kept:
+                if v.label is not None:
+                    host.relabel(ids[v.name], v.label)
+                continue
+            attrs = dict(self.defaults["vertex"])
+            attrs["x"], attrs["y"] = placed[v.name]
+            ids[v.name] = host.add("vertex", v.label, attrs, gen).id
+        for name, p in placed.items():
+            a = host.elements[ids[name]].attrs
+            a["x"], a["y"] = p
+        named: dict[str, int] = dict(ids)
+        self._edges_and_faces(d, b, ids, named, gen)
+        for el, key, value in values:
+            if key not in ("x", "y", "pos"):
+                host.elements[named[el]].attrs[key] = value
+
+    def _edges_and_faces(self, d: Daughter, b: Binding, ids, named, gen) -> None:
+        host = self.host
+        kept_e = {}
+        for i in b.edges:
+            if i in host.elements:
+                el = host.elements[i]
+                kept_e[(el.ends, True)] = i
+                kept_e[(tuple(sorted(el.ends)), False)] = i
+        for e in d.side.edges:
+            ends = (ids[e.u], ids[e.v])
+            key = (ends if e.directed else tuple(sorted(ends)), e.directed)
+            if key in kept_e:
+                host.relabel(kept_e[key], e.label)
+                i = kept_e[key]
+            else:
+                i = host.add("edge", e.label, dict(self.defaults["edge"]), gen, ends).id
+            if e.name:
+                named[e.name] = i
+        kept_f = {face_key_ids(host.elements[i].ends): i for i in b.faces if i in host.elements}
+        for f in d.side.faces:
+            cycle = tuple(ids[n] for n in f.cycle)
+            i = kept_f.get(face_key_ids(cycle))
+            if i is None:
+                i = host.add("face", f.label, dict(self.defaults["face"]), gen, cycle).id
+            else:
+                host.relabel(i, f.label)
+            if f.name:
+                named[f.name] = i
+
+
+def grammar_start_span(grammar: Grammar):
+    sets = grammar.start.daughters[0].sets if grammar.start else ()
+    return sets[0].span if sets else None
+
+
+def env_value(host: FreeHost, el: Element, key: str):
+    if key == "pos":
+        return host.pos(el.id)
+    value = el.attrs.get(key)
+    return host.derived(el, key) if value is None else value
+
+
+def face_key_ids(cycle: tuple[int, ...]) -> tuple[int, ...]:
+    k = cycle.index(min(cycle))
+    return cycle[k:] + cycle[:k]
+
+
+def _similarity(lhs: FSide, b: Binding, host: FreeHost):
+    """The map from pattern positions onto the host that takes the mother's pattern onto its
+    match: barycentre to barycentre, principal directions (total least squares) aligned, and
+    scaled by the ratio of extents. With one point it is a translation."""
+    names = [v.name for v in lhs.vertices if v.pattern is not None and v.name in b.vertices]
+    if not names:
+        return lambda p: (p[0], p[1])       # a start graph: pattern positions are positions
+    pat = np.array([lhs.vertex(n).pattern for n in names], dtype=float)
+    got = np.array([host.pos(b.vertices[n]) for n in names], dtype=float)
+    cp, cg = pat.mean(axis=0), got.mean(axis=0)
+    ext_p, ext_g = _extent(pat), _extent(got)
+    if len(names) < 2 or ext_p == 0 or ext_g == 0:
+        return lambda p: (p[0] - cp[0] + cg[0], p[1] - cp[1] + cg[1])
+    turn = _direction(got - cg) - _direction(pat - cp)
+    k = ext_g / ext_p
+    c, s = k * math.cos(turn), k * math.sin(turn)
+
+    def carry(p):
+        dx, dy = p[0] - cp[0], p[1] - cp[1]
+        return (cg[0] + c * dx - s * dy, cg[1] + s * dx + c * dy)
+    return carry
+
+
+def _extent(pts: np.ndarray) -> float:
+    return float(np.max(np.linalg.norm(pts[:, None, :] - pts[None, :, :], axis=-1)))
+
+
+def _direction(centred: np.ndarray) -> float:
+    """The angle of the principal axis (total least squares), signed so that the first point
+    lies on its negative side (or, failing that, the second on its positive side)."""
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    axis = vt[0]
+    proj = centred @ axis
+    if proj[0] > 1e-12 or (abs(proj[0]) <= 1e-12 and proj[-1] < 0):
+        axis = -axis
+    return math.atan2(axis[1], axis[0])
+
+
+def _spatial_ok(lhs: FSide, b: Binding, host: FreeHost) -> bool:
+    """Matched vertices keep the order of the pattern positions along x and along y."""
+    pts = [(v.pattern, host.pos(b.vertices[v.name])) for v in lhs.vertices
+           if v.pattern is not None]
+    for i, (p, q) in enumerate(pts):
+        for p2, q2 in pts[i + 1:]:
+            for axis in (0, 1):
+                dp, dq = p2[axis] - p[axis], q2[axis] - q[axis]
+                if (dp > 0 and dq <= 0) or (dp < 0 and dq >= 0):
+                    return False
+    return True
