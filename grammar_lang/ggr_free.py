@@ -148,7 +148,7 @@ class FreeReader:
         side = self._side_items(items, ctx, None, "start")
         scope = Scope()
         sets = [self.assign(n, side, FSide(), ctx, scope)
-                for n in node.children if n.data == "assign"]
+                for n in node.children if n.data == "start_set"]
         daughter = Daughter(side, 1.0, (), tuple(sets))
         self._positions(daughter, FSide(), self.b._first_token(node))
         return Production("start", FSide(), (daughter,))

@@ -40,7 +40,7 @@ class Binding:
         return Binding(dict(self.vertices), list(self.edges), list(self.faces), set(self.used))
 
 
-def plan(lhs: FSide) -> tuple[Step, ...]:
+def plan(lhs: FSide, anchor: Step | None = None) -> tuple[Step, ...]:
     steps: list[Step] = []
     bound: set[str] = set()
     edges, faces = set(range(len(lhs.edges))), set(range(len(lhs.faces)))
@@ -48,7 +48,9 @@ def plan(lhs: FSide) -> tuple[Step, ...]:
     while edges or faces or any(v not in bound for v in vertices):
         near_e = [k for k in sorted(edges) if {lhs.edges[k].u, lhs.edges[k].v} & bound]
         near_f = [k for k in sorted(faces) if set(lhs.faces[k].cycle) & bound]
-        if near_e or near_f:
+        if anchor is not None and not steps:
+            step = anchor
+        elif near_e or near_f:
             step = Step("edge", near_e[0]) if near_e else Step("face", near_f[0])
         elif edges or faces:    # a new anchor: a labelled edge first, it is the most selective
             labelled = [k for k in sorted(edges) if lhs.edges[k].label is not None]
@@ -72,10 +74,19 @@ def plan(lhs: FSide) -> tuple[Step, ...]:
 class Matcher:
     def __init__(self, lhs: FSide, oldest: bool):
         self.lhs, self.oldest = lhs, oldest
-        self.steps = plan(lhs)
         self.labels = {v.name: v.label for v in lhs.vertices}
+        # One plan per labelled element that could anchor it; each match starts from the one
+        # whose label is rarest in the host at that moment.
+        anchors = ([(Step("edge", k), "edge", e.label) for k, e in enumerate(lhs.edges)]
+                   + [(Step("face", k), "face", f.label) for k, f in enumerate(lhs.faces)]
+                   + [(Step("vertex", k), "vertex", v.label) for k, v in enumerate(lhs.vertices)])
+        self.plans = [(kind, label, plan(lhs, step)) for step, kind, label in anchors
+                      if label is not None] or [(None, None, plan(lhs))]
+        self.steps = self.plans[0][2]
 
     def matches(self, host: FreeHost, rng):
+        if len(self.plans) > 1:
+            self.steps = min(self.plans, key=lambda p: len(host.labelled(p[0], p[1])))[2]
         if not self.steps:
             return
         yield from self._extend(host, rng, 0, Binding({}, [None] * len(self.lhs.edges),
