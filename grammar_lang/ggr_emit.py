@@ -78,10 +78,7 @@ def _free_items(side, lhs, indent: str = "  ") -> list[str]:
     for v in side.vertices:
         at = f" ({num(v.pattern[0])}, {num(v.pattern[1])})" if v.pattern is not None else ""
         if lhs is not None and v.kept:
-            old = lhs.vertex(v.name)
-            if old.label is None:
-                continue        # a wildcard: the reader adds it back
-            if old.label == v.label:
+            if lhs.vertex(v.name).label == v.label:     # kept (a wildcard too), same label
                 items.append(f"{v.name}{at}")
                 continue
         items.append(f"{name(v.name)}: {'*' if v.label is None else name(v.label)}{at}")
