@@ -45,7 +45,19 @@ Fn = Callable[[Env], object]
 
 
 def compile_expr(expr: ast.Expr, scope: Scope) -> tuple[Type, Fn]:
-    return _Compiler(scope).node(expr)
+    t, fn = _Compiler(scope).node(expr)
+    return t, _guarded(fn)
+
+
+def _guarded(fn: Fn) -> Fn:
+    """`fn`, with the arithmetic errors of Python's math turned into EvalErrors once, at the
+    top, rather than at every call."""
+    def run(env):
+        try:
+            return fn(env)
+        except (OverflowError, ValueError, ZeroDivisionError) as exc:
+            raise EvalError(f"no finite result ({exc})") from None
+    return run
 
 
 def _div(a, b):
@@ -101,7 +113,26 @@ class _Compiler:
 
     def node(self, e: ast.Expr) -> tuple[Type, Fn]:
         method = getattr(self, "_" + type(e).__name__.lower())
-        return method(e)
+        t, fn = method(e)
+        if isinstance(e, (ast.Num, ast.Str, ast.Bool)) or not self._constant(e):
+            return t, fn
+        # A part that depends on nothing is computed once, here; if it has no value that is
+        # known before the file runs (1/0, sqrt(-1)), it is an error of the file.
+        try:
+            value = fn(None)
+        except EvalError as exc:
+            raise ExprError(f"{exc} (in a part that does not change)", e.at, 1) from None
+        return t, lambda env: value
+
+    def _constant(self, e: ast.Expr) -> bool:
+        if isinstance(e, ast.Var):
+            return e.name in CONSTANTS and e.name not in self.scope.variables
+        if isinstance(e, ast.Attr) and isinstance(e.obj, ast.Var) and \
+                e.obj.name in self.scope.elements:
+            return False
+        if isinstance(e, ast.Call) and any(s.random for s in FUNCTIONS.get(e.fn, ())):
+            return False
+        return all(self._constant(c) for c in ast.children(e))
 
     def _num(self, e: ast.Num):
         value = float(e.value)
@@ -166,10 +197,7 @@ class _Compiler:
             got = ", ".join(t.value for t, _ in parts)
             raise ExprError(f"{e.fn}({got}) does not exist", e.at, len(e.fn),
                             "it takes " + describe(e.fn))
-        fns, impl, check = [f for _, f in parts], sig.impl, _CHECK.get(sig.result)
-        if sig.random:
-            return sig.result, lambda env: _guarded(check, impl, env.rng, *[f(env) for f in fns])
-        return sig.result, lambda env: _guarded(check, impl, *[f(env) for f in fns])
+        return sig.result, _call_fn(sig, [f for _, f in parts])
 
     def _unary(self, e: ast.Unary):
         t, f = self.node(e.arg)
@@ -233,12 +261,18 @@ def _vfinite(v):
 _CHECK = {N: finite, V: _vfinite}
 
 
-def _guarded(check, impl, *args):
-    try:
-        value = impl(*args)
-    except (OverflowError, ValueError) as exc:
-        raise EvalError(f"no finite result ({exc})") from None
-    return check(value) if check else value
+def _call_fn(sig, fns: list[Fn]) -> Fn:
+    """A call's closure, without building argument lists for the common arities."""
+    impl, check = sig.impl, _CHECK.get(sig.result, lambda v: v)
+    if sig.random:
+        return lambda env: check(impl(env.rng, *[f(env) for f in fns]))
+    if len(fns) == 1:
+        (f0,) = fns
+        return lambda env: check(impl(f0(env)))
+    if len(fns) == 2:
+        f0, f1 = fns
+        return lambda env: check(impl(f0(env), f1(env)))
+    return lambda env: check(impl(*[f(env) for f in fns]))
 
 
 def _bounded_text(s: str) -> str:

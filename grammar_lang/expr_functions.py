@@ -93,7 +93,7 @@ def _channel(x) -> int:
 
 
 def _rgb(r, g, b):
-    return f"#{_channel(r):02x}{_channel(g):02x}{_channel(b):02x}"
+    return "#%02x%02x%02x" % (_channel(r), _channel(g), _channel(b))
 
 
 def hex_colour(text: str) -> str:
@@ -106,9 +106,8 @@ def hex_colour(text: str) -> str:
 
 
 def _mix(a, b, t):
-    pa = [int(a[k:k + 2], 16) for k in (1, 3, 5)]
-    pb = [int(b[k:k + 2], 16) for k in (1, 3, 5)]
-    return _rgb(*(x + (y - x) * t for x, y in zip(pa, pb)))
+    x, y = int(a[1:], 16), int(b[1:], 16)
+    return _rgb(*((x >> s & 255) + ((y >> s & 255) - (x >> s & 255)) * t for s in (16, 8, 0)))
 
 
 def _uniform(rng, lo, hi):

@@ -119,8 +119,9 @@ class FreeReader:
         scope = lhs_scope(lhs, ctx)
         conditions, lets, daughters = [], [], []
         for item in body[1:]:
-            if item.data == "where":
-                _, e = self.expr(item.children[0], scope, Type.BOOL, "a condition")
+            if item.data == "where":     # over the match alone: checked before any 'let'
+                _, e = self.expr(item.children[0], lhs_scope(lhs, ctx), Type.BOOL,
+                                 "a condition")
                 conditions.append(Condition(e, self.b.span(item.children[0])))
             elif item.data == "let":
                 if daughters:

@@ -56,7 +56,7 @@ class _Compiled:
     matcher: Matcher
     conditions: tuple
     lets: tuple
-    daughters: tuple        # (daughter, lets, sets, similarity anchors)
+    daughters: tuple        # a _Shape for each daughter
 
 
 class FreeEngine:
@@ -90,14 +90,15 @@ class FreeEngine:
 
     def _compile(self, p: Production) -> _Compiled:
         scope = lhs_scope(p.lhs, self.context)
-        conditions = tuple(self._fn(c.expr, scope) for c in p.conditions)
+        conditions = tuple(self._fn(c.expr, lhs_scope(p.lhs, self.context))
+                           for c in p.conditions)
         lets = tuple((l.name, self._fn(l.expr, scope, l.name, l.type)) for l in p.lets)
         daughters = []
         for d in p.daughters:
             local = Scope(dict(scope.variables), scope.elements)
             dl = tuple((l.name, self._fn(l.expr, local, l.name, l.type)) for l in d.lets)
             sets = tuple((a.element, a.key, self._fn(a.expr, local)) for a in d.sets)
-            daughters.append((d, dl, sets))
+            daughters.append(_Shape.of(d, p.lhs, dl, sets))
         return _Compiled(p, Matcher(p.lhs, p.match == "oldest"), conditions, lets,
                          tuple(daughters))
 
@@ -166,16 +167,19 @@ class FreeEngine:
         return False if rejected else None
 
     def _draw(self, todo: list[_Compiled]) -> _Compiled:
-        weights = [c.production.weight for c in todo]
+        return self._weighted(todo, [c.production.weight for c in todo])
+
+    def _weighted(self, items: list, weights: list[float]):
+        """One of `items`, drawn with probability proportional to its weight."""
         total = sum(weights)
-        if total <= 0:
-            return todo[0]
+        if len(items) == 1 or total <= 0:
+            return items[0]
         x = self.rng.random() * total
-        for c, w in zip(todo, weights):
+        for item, w in zip(items, weights):
             x -= w
             if x < 0:
-                return c
-        return todo[-1]
+                return item
+        return items[-1]
 
     def _try(self, c: _Compiled) -> bool | None:
         """True: applied; False: matches existed but each was rejected; None: no match."""
@@ -185,10 +189,10 @@ class FreeEngine:
                 break
             env = _Env(self.host, self._elements(c.production.lhs, b), self.rng)
             try:
-                for name, fn in c.lets:
-                    env.values[name] = fn(env)
                 if not all(fn(env) for fn in c.conditions):
                     continue
+                for name, fn in c.lets:
+                    env.values[name] = fn(env)
                 if c.production.spatial and not _spatial_ok(c.production.lhs, b, self.host):
                     continue
                 found = True
@@ -200,16 +204,8 @@ class FreeEngine:
                 self.reasons[reason] = self.reasons.get(reason, 0) + 1
         return False if found else None
 
-    def _pick(self, c: _Compiled):
-        if len(c.daughters) == 1:
-            return c.daughters[0]
-        weights = [d[0].weight for d in c.daughters]
-        x = self.rng.random() * sum(weights)
-        for d, w in zip(c.daughters, weights):
-            x -= w
-            if x < 0:
-                return d
-        return c.daughters[-1]
+    def _pick(self, c: _Compiled) -> "_Shape":
+        return self._weighted(c.daughters, [d.weight for d in c.production.daughters])
 
     def _elements(self, lhs: FSide, b: Binding) -> dict[str, Element]:
         els = {name: self.host.elements[i] for name, i in b.vertices.items()}
@@ -223,53 +219,50 @@ class FreeEngine:
 
     # -- rewriting --
 
-    def _rewrite(self, c: _Compiled, daughter, b: Binding, env: _Env) -> None:
-        d, lets, sets = daughter
-        for name, fn in lets:
+    def _rewrite(self, c: _Compiled, daughter: "_Shape", b: Binding, env: _Env) -> None:
+        for name, fn in daughter.lets:
             env.values[name] = fn(env)
-        values = [(el, key, fn(env)) for el, key, fn in sets]
-        lhs = c.production.lhs
-        placed = self._place(d, lhs, b, values)
-        doomed = self._doomed(d, lhs, b)
-        changed = self._changes_something(d, lhs, b, values, doomed)
-        if not changed:
+        values = [(el, key, fn(env)) for el, key, fn in daughter.sets]
+        placed = self._place(daughter, c.production.lhs, b, values)
+        doomed = self._doomed(daughter, b)
+        if not (doomed or daughter.grows or self._changes(daughter, b, values)):
             raise _Reject("no change: the match would stay as it was")
-        self._edit(d, b, values, placed, doomed)
+        self._edit(daughter, b, values, placed, doomed)
 
-    def _place(self, d: Daughter, lhs: FSide, b: Binding, values) -> dict[str, list[float]]:
+    def _place(self, d: "_Shape", lhs: FSide, b: Binding, values) -> dict[str, list[float]]:
         pos: dict[str, list[float]] = {}
         for el, key, value in values:
-            if key in ("x", "y", "pos") and d.side.vertex(el) is not None:
+            if key in ("x", "y", "pos") and el in d.kept:
                 p = pos.setdefault(el, [math.nan, math.nan])
                 if key == "pos":
                     p[0], p[1] = value
                 else:
                     p[0 if key == "x" else 1] = value
-        auto = [v for v in d.side.vertices if not v.kept and
-                (v.name not in pos or any(math.isnan(c) for c in pos[v.name]))]
+        auto = [(name, pattern) for name, _, pattern in d.new
+                if name not in pos or math.isnan(pos[name][0]) or math.isnan(pos[name][1])]
         if auto:
             transform = _similarity(lhs, b, self.host)
-            for v in auto:
-                p = pos.setdefault(v.name, [math.nan, math.nan])
-                q = transform(v.pattern)
+            for name, pattern in auto:
+                p = pos.setdefault(name, [math.nan, math.nan])
+                q = transform(pattern)
                 p[0] = q[0] if math.isnan(p[0]) else p[0]
                 p[1] = q[1] if math.isnan(p[1]) else p[1]
         for name, p in pos.items():
-            if d.side.vertex(name).kept:    # a kept vertex moves only where it is set
+            if d.kept[name]:        # a kept vertex moves only along what is set
                 old = self.host.pos(b.vertices[name])
                 p[0] = old[0] if math.isnan(p[0]) else p[0]
                 p[1] = old[1] if math.isnan(p[1]) else p[1]
-            if not all(math.isfinite(x) and abs(x) <= MAX_COORDINATE for x in p):
+            if not (math.isfinite(p[0]) and math.isfinite(p[1])
+                    and abs(p[0]) <= MAX_COORDINATE and abs(p[1]) <= MAX_COORDINATE):
                 raise _Reject("a coordinate that is not finite (or beyond ±1e12)")
         return pos
 
-    def _doomed(self, d: Daughter, lhs: FSide, b: Binding) -> list[int]:
+    def _doomed(self, d: "_Shape", b: Binding) -> list[int]:
         """Host ids of the match that the daughter does not keep, edges and faces first."""
-        keep_e = {(edge_key(e), e.directed) for e in d.side.edges}
-        keep_f = {face_key(f) for f in d.side.faces}
-        out = [i for e, i in zip(lhs.edges, b.edges) if (edge_key(e), e.directed) not in keep_e]
-        out += [i for f, i in zip(lhs.faces, b.faces) if face_key(f) not in keep_f]
-        gone = [b.vertices[v.name] for v in lhs.vertices if d.side.vertex(v.name) is None]
+        out = [b.edges[k] for k in d.doomed_edges] + [b.faces[k] for k in d.doomed_faces]
+        if not d.gone:
+            return out
+        gone = [b.vertices[name] for name in d.gone]
         dead = set(out)
         for v in gone:
             dangling = [k for k in self.host.incident[v] if k not in dead]
@@ -279,76 +272,99 @@ class FreeEngine:
             dead.update(dangling)
         return out + gone
 
-    def _changes_something(self, d: Daughter, lhs: FSide, b: Binding, values, doomed) -> bool:
-        if doomed or any(not v.kept for v in d.side.vertices):
-            return True
+    def _changes(self, d: "_Shape", b: Binding, values) -> bool:
+        """Whether a daughter that adds and deletes nothing still changes something."""
         host = self.host
-        old_e = {(edge_key(e), e.directed): i for e, i in zip(lhs.edges, b.edges)}
-        old_f = {face_key(f): i for f, i in zip(lhs.faces, b.faces)}
-        for key, label in [((edge_key(e), e.directed), e.label) for e in d.side.edges]:
-            if key not in old_e or host.elements[old_e[key]].label != label:
-                return True
-        for f in d.side.faces:
-            i = old_f.get(face_key(f))
-            if i is None or host.elements[i].label != f.label:
-                return True
-        els = self._elements(lhs, b)
-        if any(v.label is not None and els[v.name].label != v.label for v in d.side.vertices):
+        if any(host.elements[b.vertices[name]].label != label for name, label in d.relabel):
             return True
+        if any(host.elements[b.edges[k]].label != e[3] for e in d.edges for k in [e[5]]):
+            return True
+        if any(host.elements[b.faces[k]].label != f[2] for f in d.faces for k in [f[3]]):
+            return True
+        els = self._elements(d.lhs, b)
         return any(el not in els or env_value(host, els[el], key) != value
                    for el, key, value in values)
 
-    def _edit(self, d: Daughter, b: Binding, values, placed, doomed) -> None:
+    def _edit(self, d: "_Shape", b: Binding, values, placed, doomed) -> None:
         host, gen = self.host, self.step_no
         for i in doomed:
             if i in host.elements:
                 host.remove(i)
         ids = dict(b.vertices)
-        for v in d.side.vertices:
-            if v.kept:
-                if v.label is not None:
-                    host.relabel(ids[v.name], v.label)
-                continue
-            attrs = dict(self.defaults["vertex"])
-            attrs["x"], attrs["y"] = placed[v.name]
-            ids[v.name] = host.add("vertex", v.label, attrs, gen).id
+        for name, label in d.relabel:
+            host.relabel(ids[name], label)
+        vdefault = self.defaults["vertex"]
+        for name, label, _ in d.new:
+            attrs = dict(vdefault)
+            attrs["x"], attrs["y"] = placed[name]
+            ids[name] = host.add("vertex", label, attrs, gen).id
         for name, p in placed.items():
-            a = host.elements[ids[name]].attrs
-            a["x"], a["y"] = p
-        named: dict[str, int] = dict(ids)
-        self._edges_and_faces(d, b, ids, named, gen)
+            if d.kept[name]:
+                attrs = host.elements[ids[name]].attrs
+                attrs["x"], attrs["y"] = p
+        named = self._edges_and_faces(d, b, ids, gen)
         for el, key, value in values:
             if key not in ("x", "y", "pos"):
                 host.elements[named[el]].attrs[key] = value
 
-    def _edges_and_faces(self, d: Daughter, b: Binding, ids, named, gen) -> None:
-        host = self.host
-        kept_e = {}
-        for i in b.edges:
-            if i in host.elements:
-                el = host.elements[i]
-                kept_e[(el.ends, True)] = i
-                kept_e[(tuple(sorted(el.ends)), False)] = i
-        for e in d.side.edges:
-            ends = (ids[e.u], ids[e.v])
-            key = (ends if e.directed else tuple(sorted(ends)), e.directed)
-            if key in kept_e:
-                host.relabel(kept_e[key], e.label)
-                i = kept_e[key]
+    def _edges_and_faces(self, d: "_Shape", b: Binding, ids: dict, gen: int) -> dict:
+        host, named = self.host, ids
+        for name, u, v, label, directed, old in d.edges:
+            if old is None:
+                i = host.add("edge", label, dict(self.defaults["edge"]), gen, (ids[u], ids[v])).id
             else:
-                i = host.add("edge", e.label, dict(self.defaults["edge"]), gen, ends).id
-            if e.name:
-                named[e.name] = i
-        kept_f = {face_key_ids(host.elements[i].ends): i for i in b.faces if i in host.elements}
-        for f in d.side.faces:
-            cycle = tuple(ids[n] for n in f.cycle)
-            i = kept_f.get(face_key_ids(cycle))
-            if i is None:
-                i = host.add("face", f.label, dict(self.defaults["face"]), gen, cycle).id
+                i = b.edges[old]
+                host.relabel(i, label)
+            if name:
+                named[name] = i
+        for name, cycle, label, old in d.faces:
+            if old is None:
+                i = host.add("face", label, dict(self.defaults["face"]), gen,
+                             tuple(ids[n] for n in cycle)).id
             else:
-                host.relabel(i, f.label)
-            if f.name:
-                named[f.name] = i
+                i = b.faces[old]
+                host.relabel(i, label)
+            if name:
+                named[name] = i
+        return named
+
+
+@dataclass(frozen=True)
+class _Shape:
+    """A daughter, worked out once against its mother graph: what is kept, made and deleted."""
+
+    lhs: FSide
+    lets: tuple
+    sets: tuple
+    kept: dict            # daughter vertex name → kept from the lhs?
+    new: tuple            # (name, label, pattern) of each new vertex
+    relabel: tuple        # (name, label) of each kept, non-wildcard vertex
+    gone: tuple           # lhs vertex names not in the daughter
+    doomed_edges: tuple   # indices into lhs.edges / lhs.faces of what is not kept
+    doomed_faces: tuple
+    edges: tuple          # (name, u, v, label, directed, lhs index if kept, else None)
+    faces: tuple          # (name, cycle, label, lhs index if kept, else None)
+    grows: bool           # whether it makes or deletes something, whatever the match
+
+    @staticmethod
+    def of(d: Daughter, lhs: FSide, lets, sets) -> "_Shape":
+        old_e = {(edge_key(e), e.directed): k for k, e in enumerate(lhs.edges)}
+        old_f = {face_key(f): k for k, f in enumerate(lhs.faces)}
+        edges = tuple((e.name, e.u, e.v, e.label, e.directed, old_e.get((edge_key(e), e.directed)))
+                      for e in d.side.edges)
+        faces = tuple((f.name, f.cycle, f.label, old_f.get(face_key(f))) for f in d.side.faces)
+        kept_e = {e[5] for e in edges} - {None}
+        kept_f = {f[3] for f in faces} - {None}
+        new = tuple((v.name, v.label, v.pattern) for v in d.side.vertices if not v.kept)
+        gone = tuple(v.name for v in lhs.vertices if d.side.vertex(v.name) is None)
+        doomed_e = tuple(k for k in range(len(lhs.edges)) if k not in kept_e)
+        doomed_f = tuple(k for k in range(len(lhs.faces)) if k not in kept_f)
+        grows = bool(new or gone or doomed_e or doomed_f or any(e[5] is None for e in edges)
+                     or any(f[3] is None for f in faces))
+        return _Shape(lhs, lets, sets, {v.name: v.kept for v in d.side.vertices}, new,
+                      tuple((v.name, v.label) for v in d.side.vertices
+                            if v.kept and v.label is not None),
+                      gone, doomed_e, doomed_f, edges, faces, grows)
 
 
 def grammar_start_span(grammar: Grammar):
@@ -361,11 +377,6 @@ def env_value(host: FreeHost, el: Element, key: str):
         return host.pos(el.id)
     value = el.attrs.get(key)
     return host.derived(el, key) if value is None else value
-
-
-def face_key_ids(cycle: tuple[int, ...]) -> tuple[int, ...]:
-    k = cycle.index(min(cycle))
-    return cycle[k:] + cycle[:k]
 
 
 def _similarity(lhs: FSide, b: Binding, host: FreeHost):
