@@ -11,7 +11,6 @@ negative number) are `EvalError`s, which reject the rewriting step that needed t
 
 from __future__ import annotations
 
-import math
 import operator
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
