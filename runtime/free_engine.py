@@ -388,11 +388,11 @@ def _similarity(lhs: FSide, b: Binding, host: FreeHost):
         return lambda p: (p[0], p[1])       # a start graph: pattern positions are positions
     pat = np.array([lhs.vertex(n).pattern for n in names], dtype=float)
     got = np.array([host.pos(b.vertices[n]) for n in names], dtype=float)
-    cp, cg = pat.mean(axis=0), got.mean(axis=0)
+    cp, cg = [float(x) for x in pat.mean(axis=0)], [float(x) for x in got.mean(axis=0)]
     ext_p, ext_g = _extent(pat), _extent(got)
     if len(names) < 2 or ext_p == 0 or ext_g == 0:
         return lambda p: (p[0] - cp[0] + cg[0], p[1] - cp[1] + cg[1])
-    turn = _direction(got - cg) - _direction(pat - cp)
+    turn = _direction(got - np.array(cg)) - _direction(pat - np.array(cp))
     k = ext_g / ext_p
     c, s = k * math.cos(turn), k * math.sin(turn)
 
