@@ -71,22 +71,29 @@ class FreeHost:
         return [ix for (k, _), ix in sorted(self.index.items()) if k == kind]
 
     def add(self, kind: str, label: str, attrs: dict, gen: int, ends: tuple = ()) -> Element:
-        el = Element(self._next, kind, label, attrs, gen, ends)
-        self._next += 1
-        self.elements[el.id] = el
-        self.index.setdefault((kind, label), LabelIndex()).add(el.id)
+        """A new element; the ends of an edge or the corners of a face are distinct vertices
+        (the loader checks that every side names them so)."""
+        i = self._next
+        self._next = i + 1
+        el = Element(i, kind, label, attrs, gen, ends)
+        self.elements[i] = el
+        ix = self.index.get((kind, label))
+        if ix is None:
+            ix = self.index[(kind, label)] = LabelIndex()
+        ix.add(i)
         self.counts[kind] += 1
         if kind == "vertex":
-            self.incident[el.id] = {}
-        for v in dict.fromkeys(ends):
-            self.incident[v][el.id] = None
+            self.incident[i] = {}
+        incident = self.incident
+        for v in ends:
+            incident[v][i] = None
         return el
 
     def remove(self, i: int) -> None:
         el = self.elements.pop(i)
         self.index[(el.kind, el.label)].remove(i)
         self.counts[el.kind] -= 1
-        for v in dict.fromkeys(el.ends):
+        for v in el.ends:
             self.incident[v].pop(i, None)
         if el.kind == "vertex":
             del self.incident[i]
