@@ -22,6 +22,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from grammar_lang.blas import pin_blas_threads  # noqa: E402
 from grammar_lang.ggr_parser import load_ggr  # noqa: E402
 from runtime.free_engine import FreeEngine  # noqa: E402
 
@@ -75,6 +76,7 @@ def main() -> None:
     p.add_argument("--elements", type=int, default=100_000, help="size of the growth runs")
     p.add_argument("--windows", type=int, default=8, help="rows of the growth table")
     args = p.parse_args()
+    pin_blas_threads()
     table_tasks(args.repeat)
     for name in ("koch", "honda-tree"):
         table_growth(name, args.elements, args.windows)
