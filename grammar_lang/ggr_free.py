@@ -116,6 +116,10 @@ class FreeReader:
                               "then 'where' conditions, 'let' lines, and one or more "
                               "'rhs weight=W { … }' each followed by its 'set' lines")
         lhs = self.side(sides[0], ctx, None)
+        if s.get("spatial") and sum(v.pattern is not None for v in lhs.vertices) < 2:
+            raise self.b.fail("'spatial' compares pattern positions, and the lhs has fewer "
+                              "than two", self.b._key(rest, "spatial"),
+                              "give the lhs vertices pattern positions: 'a: pt (0, 0)'")
         scope = lhs_scope(lhs, ctx)
         conditions, lets, daughters = [], [], []
         for item in body[1:]:

@@ -195,3 +195,28 @@ def test_svg_values_are_escaped():
             + "start {\n  a: pt\n  set a.pos = (0, 0)\n  set a.d = \"M 0 0\\\" onload=\\\"x<y>\"\n}\n")
     svg = render_free_svg(FreeEngine(parse_ggr(text), 0).host, parse_ggr(text).header)
     assert 'onload="' not in svg and "&quot; onload=&quot;x&lt;y&gt;" in svg
+
+
+SPATIAL = (HEAD + "start {\n  a: pt (0, 0)   b: pt (1, 0)   c: pt (0.5, 1)\n}\n"
+           "production p SPATIAL {\n  lhs {\n    l: pt (0, 0)   r: pt (1, 1)\n  }\n"
+           "  rhs {\n    l   r\n    l -- r seg\n  }\n}\n")
+
+
+def test_spatial_matching_keeps_the_pattern_order():
+    def runs(flag: str) -> set:
+        found = set()
+        for seed in range(12):
+            engine = FreeEngine(parse_ggr(SPATIAL.replace("SPATIAL", flag)), seed)
+            engine.step()
+            e = next(el for el in engine.host.elements.values() if el.kind == "edge")
+            found.add(tuple(engine.host.pos(v) for v in e.ends))
+        return found
+    # r is right of l and above it: of the three vertices only a, c are placed so
+    assert runs("spatial") == {((0.0, 0.0), (0.5, 1.0))}
+    assert len(runs("")) > 1
+
+
+def test_spatial_needs_pattern_positions():
+    text = SPATIAL.replace("SPATIAL", "spatial").replace(" (0, 0)   r: pt (1, 1)", "   r: pt")
+    with pytest.raises(UserError, match="'spatial' compares pattern positions"):
+        parse_ggr(text)
