@@ -87,7 +87,8 @@ class Matcher:
     def matches(self, host: FreeHost, rng):
         if len(self.plans) > 1:
             self.steps = min(self.plans, key=lambda p: len(host.labelled(p[0], p[1])))[2]
-        if not self.steps:
+        if not self.steps:      # an empty mother graph matches once, anywhere
+            yield Binding({}, [], [], set())
             return
         yield from self._extend(host, rng, 0, Binding({}, [None] * len(self.lhs.edges),
                                                       [None] * len(self.lhs.faces), set()))

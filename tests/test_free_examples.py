@@ -220,3 +220,9 @@ def test_spatial_needs_pattern_positions():
     text = SPATIAL.replace("SPATIAL", "spatial").replace(" (0, 0)   r: pt (1, 1)", "   r: pt")
     with pytest.raises(UserError, match="'spatial' compares pattern positions"):
         parse_ggr(text)
+
+
+def test_an_empty_mother_graph_matches_every_step():
+    text = HEAD + "production seed {\n  lhs {\n  }\n  rhs {\n    p: pt\n  }\n  set p.pos = (uniform(0, 1), 0)\n}\n"
+    summary = FreeEngine(parse_ggr(text), 0).run(7)
+    assert summary.applied == 7 and summary.vertices == 7
