@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import networkx as nx
 from lark import Token, Tree
 
 from . import expr_ast as ast
@@ -143,7 +144,7 @@ class FreeReader:
         if not daughters:
             raise self.b.fail(f"production '{name}' has no right side", name_tok,
                               "add 'rhs { … }'; an empty 'rhs { }' deletes the match")
-        out = tuple(self._daughter(d, lhs, name_tok) for d in daughters)
+        out = tuple(self._daughter(d, lhs, name_tok, bool(conditions)) for d in daughters)
         return Production(name, lhs, out, tuple(conditions), tuple(lets),
                           s.get("priority", 0), s.get("weight", 1.0), match,
                           s.get("spatial", False), self.b.span(name_tok))
@@ -178,7 +179,7 @@ class FreeReader:
         local = Scope(dict(scope.variables), dict(scope.elements))
         return (side, [], [], local, weight.get("weight", 1.0), node.children[0])
 
-    def _daughter(self, head, lhs: FSide, name_tok: Token) -> Daughter:
+    def _daughter(self, head, lhs: FSide, name_tok: Token, conditional: bool) -> Daughter:
         side, lets, sets, _, weight, where = head
         daughter = Daughter(side, weight, tuple(lets), tuple(sets))
         self._positions(daughter, lhs, where)
@@ -186,6 +187,11 @@ class FreeReader:
             raise self.b.fail("this right side leaves its match exactly as it was", where,
                               "the production would apply to the same match forever; change "
                               "a label or an attribute, or delete something")
+        if not conditional and lhs.vertices and _same_shape(side, lhs):
+            raise self.b.fail("this right side makes a copy of the left side, so it recreates "
+                              "its own match: the production would apply forever", where,
+                              "add a 'where' condition that its 'set' lines make false, or "
+                              "change what the right side makes")
         return daughter
 
     def _positions(self, d: Daughter, lhs: FSide, where: Token) -> None:
@@ -387,6 +393,35 @@ def edge_key(e: FEdge) -> tuple:
 def face_key(f: FFace) -> tuple:
     k = f.cycle.index(min(f.cycle))
     return f.cycle[k:] + f.cycle[:k]
+
+
+def _shape_graph(side: FSide) -> nx.MultiDiGraph:
+    """A side as a labelled graph: vertices, and a node for each edge and face tied to its
+    ends (tail/head, or end twice when undirected) and its corners in cycle order."""
+    g = nx.MultiDiGraph()
+    for v in side.vertices:
+        g.add_node(("v", v.name), label=("vertex", v.label))
+    for k, e in enumerate(side.edges):
+        g.add_node(("e", k), label=("edge", e.label, e.directed))
+        g.add_edge(("e", k), ("v", e.u), role="tail" if e.directed else "end")
+        g.add_edge(("e", k), ("v", e.v), role="head" if e.directed else "end")
+    for k, f in enumerate(side.faces):
+        g.add_node(("f", k), label=("face", f.label))
+        for a, b in zip(f.cycle, f.cycle[1:] + f.cycle[:1]):
+            g.add_edge(("f", k), ("v", a), role="corner")
+            g.add_edge(("v", a), ("v", b), role=("next", f.label))
+    return g
+
+
+def _same_shape(a: FSide, b: FSide) -> bool:
+    """Whether two sides are the same labelled graph (a wildcard is its own label)."""
+    if (len(a.vertices), len(a.edges), len(a.faces)) != (len(b.vertices), len(b.edges),
+                                                          len(b.faces)):
+        return False
+    same = lambda x, y: x["label"] == y["label"]          # noqa: E731
+    roles = lambda x, y: sorted(map(repr, (d["role"] for d in x.values()))) == \
+        sorted(map(repr, (d["role"] for d in y.values())))  # noqa: E731
+    return nx.is_isomorphic(_shape_graph(a), _shape_graph(b), node_match=same, edge_match=roles)
 
 
 def _leaves_match(d: Daughter, lhs: FSide) -> bool:

@@ -146,6 +146,7 @@ def prod(body: str, rhs: str = "a  b  c: pt\n    a -> c seg", sets: str = "  set
     (prod("  where a.height > 1\n"), "'a' has no attribute 'height'", (17, 9)),
     (prod("  where a.h\n"), "a condition must be a boolean", (17, 9)),
     (prod("  let v = " + "sqrt(" * 50 + "1" + ")" * 50 + "\n"), "nested too deeply", None),
+    (prod("", "a  c: pt\n    a -> c seg"), "recreates its own match", None),
     (prod("", "a  b\n    a -> b seg", ""), "leaves its match exactly as it was", None),
     (prod("", sets=""), "the new vertex 'c' has no position", None),
     (prod("", sets="  set c.pos = 1\n"), "c.pos must be a vector", None),
