@@ -46,8 +46,8 @@ class _Env:
 
     def get(self, name: str, key: str):
         el = self.elements[name]
-        value = el.attrs.get(key)
-        return self.host.derived(el, key) if value is None else value
+        attrs = el.attrs
+        return attrs[key] if key in attrs else self.host.derived(el, key)
 
 
 @dataclass
@@ -68,6 +68,8 @@ class FreeEngine:
         self.context = context_of(grammar.header)
         self.compiled = [self._compile(p) for p in grammar.productions]
         self.levels = sorted({p.priority for p in grammar.productions})
+        self.by_level = {level: [c for c in self.compiled if c.production.priority == level]
+                         for level in self.levels}
         self.dpo = grammar.header.mode == "dpo"
         self.reset(seed)
 
@@ -152,7 +154,7 @@ class FreeEngine:
         for level in self.levels:
             if self.applied.get(level, 0) >= self.limits.get(level, math.inf):
                 continue
-            todo = [c for c in self.compiled if c.production.priority == level]
+            todo = list(self.by_level[level])
             while todo:
                 c = self._draw(todo)
                 todo.remove(c)
@@ -208,13 +210,15 @@ class FreeEngine:
         return self._weighted(c.daughters, [d.weight for d in c.production.daughters])
 
     def _elements(self, lhs: FSide, b: Binding) -> dict[str, Element]:
-        els = {name: self.host.elements[i] for name, i in b.vertices.items()}
-        for e, i in zip(lhs.edges, b.edges):
-            if e.name:
-                els[e.name] = self.host.elements[i]
-        for f, i in zip(lhs.faces, b.faces):
-            if f.name:
-                els[f.name] = self.host.elements[i]
+        elements = self.host.elements
+        els = {name: elements[i] for name, i in b.vertices.items()}
+        if b.edges or b.faces:
+            for e, i in zip(lhs.edges, b.edges):
+                if e.name:
+                    els[e.name] = elements[i]
+            for f, i in zip(lhs.faces, b.faces):
+                if f.name:
+                    els[f.name] = elements[i]
         return els
 
     # -- rewriting --
