@@ -47,7 +47,7 @@ class _Env:
     def get(self, name: str, key: str):
         el = self.elements[name]
         attrs = el.attrs
-        return attrs[key] if key in attrs else self.host.derived(el, key)
+        return attrs[key] if key in attrs else self.host.value(el, key)
 
 
 @dataclass
@@ -62,6 +62,8 @@ class _Compiled:
 class FreeEngine:
     def __init__(self, grammar: Grammar, seed: int = 0, limits: dict[int, int] | None = None):
         self.grammar = grammar
+        # Declared attributes are not copied into elements: an element holds what was set on
+        # it, and the host falls back to the defaults (so a decoration can beat a default).
         self.defaults = {k: {a.name: a.value for a in grammar.header.attributes if a.kind == k}
                          for k in ("vertex", "edge", "face")}
         self.limits = dict(limits or {})
@@ -75,7 +77,7 @@ class FreeEngine:
 
     def reset(self, seed: int) -> None:
         self.rng = random.Random(seed)
-        self.host = FreeHost()
+        self.host = FreeHost(self.defaults)
         self.step_no = 0
         self.applied: dict[int, int] = {}
         self.reasons: dict[str, int] = {}
@@ -297,10 +299,8 @@ class FreeEngine:
         ids = dict(b.vertices)
         for name, label in d.relabel:
             host.relabel(ids[name], label)
-        vdefault = self.defaults["vertex"]
         for name, label, _ in d.new:
-            attrs = dict(vdefault)
-            attrs["x"], attrs["y"] = placed[name]
+            attrs = {"x": placed[name][0], "y": placed[name][1]}
             ids[name] = host.add("vertex", label, attrs, gen).id
         for name, p in placed.items():
             if d.kept[name]:
@@ -315,7 +315,7 @@ class FreeEngine:
         host, named = self.host, ids
         for name, u, v, label, directed, old in d.edges:
             if old is None:
-                i = host.add("edge", label, dict(self.defaults["edge"]), gen, (ids[u], ids[v])).id
+                i = host.add("edge", label, {}, gen, (ids[u], ids[v])).id
             else:
                 i = b.edges[old]
                 host.relabel(i, label)
@@ -323,7 +323,7 @@ class FreeEngine:
                 named[name] = i
         for name, cycle, label, old in d.faces:
             if old is None:
-                i = host.add("face", label, dict(self.defaults["face"]), gen,
+                i = host.add("face", label, {}, gen,
                              tuple(ids[n] for n in cycle)).id
             else:
                 i = b.faces[old]
@@ -379,8 +379,7 @@ def grammar_start_span(grammar: Grammar):
 def env_value(host: FreeHost, el: Element, key: str):
     if key == "pos":
         return host.pos(el.id)
-    value = el.attrs.get(key)
-    return host.derived(el, key) if value is None else value
+    return el.attrs[key] if key in el.attrs else host.value(el, key)
 
 
 def _similarity(lhs: FSide, b: Binding, host: FreeHost):

@@ -58,7 +58,9 @@ class LabelIndex:
 
 
 class FreeHost:
-    def __init__(self):
+    def __init__(self, defaults: dict[str, dict] | None = None):
+        # kind → declared attribute → default; an element's own attrs hold what was set
+        self.defaults = defaults or {"vertex": {}, "edge": {}, "face": {}}
         self.elements: dict[int, Element] = {}
         self.index: dict[tuple[str, str], LabelIndex] = {}
         self.incident: dict[int, dict[int, None]] = {}      # vertex → edges and faces on it
@@ -114,6 +116,18 @@ class FreeHost:
     def pos(self, v: int) -> tuple[float, float]:
         a = self.elements[v].attrs
         return (a["x"], a["y"])
+
+    def value(self, el: Element, key: str):
+        """An attribute as expressions see it: set on the element, else the declared default,
+        else a built-in value."""
+        if key in el.attrs:
+            return el.attrs[key]
+        defaults = self.defaults[el.kind]
+        return defaults[key] if key in defaults else self.derived(el, key)
+
+    def attributes(self, el: Element) -> dict:
+        """Every declared attribute of the element, with what was set on it."""
+        return {**self.defaults[el.kind], **el.attrs}
 
     def derived(self, el: Element, key: str):
         if key == "label":

@@ -49,11 +49,14 @@ def render_free_svg(host: FreeHost, header) -> str:
            f"vertices, {host.counts['edge']} edges, {host.counts['face']} faces</title>",
            '  <g transform="scale(1,-1)" stroke-linecap="round" stroke-linejoin="round">']
     decos = {kind: _decorations(header, kind) for kind in ("face", "edge", "vertex")}
+    # A declared default yields to the label's decoration; what was set on an element wins.
+    paint_defaults = {kind: {k: v for k, v in host.defaults[kind].items() if k in PAINT}
+                      for kind in decos}
     faces = list(header.face_labels)
     for kind in ("face", "edge", "vertex"):
         for el in host.elements.values():
             if el.kind == kind:
-                style = {**_style_for(decos[kind], el.label),
+                style = {**paint_defaults[kind], **_style_for(decos[kind], el.label),
                          **{key: el.attrs[key] for key in PAINT if key in el.attrs}}
                 line = _draw(host, el, style, fmt, unit, faces)
                 if line:
@@ -117,11 +120,13 @@ def free_drawing(host: FreeHost, meta: dict) -> Drawing:
     verts = tuple(DVertex(k, host.pos(i)[0], host.pos(i)[1]) for i, k in ids.items())
     edges = [el for el in host.elements.values() if el.kind == "edge"]
     faces = [el for el in host.elements.values() if el.kind == "face"]
-    plain = lambda a: {k: v for k, v in sorted(a.items()) if k not in ("x", "y")}  # noqa: E731
+    def plain(el) -> dict:
+        return {k: v for k, v in sorted(host.attributes(el).items()) if k not in ("x", "y")}
+
     extra = {"faces": [{"label": f.label, "vertices": [ids[v] for v in f.ends],
-                        "attributes": plain(f.attrs)} for f in faces],
+                        "attributes": plain(f)} for f in faces],
              "vertex_labels": [host.elements[i].label for i in ids],
-             "attributes": {"vertices": [plain(host.elements[i].attrs) for i in ids],
-                            "edges": [plain(e.attrs) for e in edges]}}
+             "attributes": {"vertices": [plain(host.elements[i]) for i in ids],
+                            "edges": [plain(e) for e in edges]}}
     return Drawing(verts, tuple(DEdge(ids[e.ends[0]], ids[e.ends[1]], "exterior", "exterior",
                                       e.label, e.label) for e in edges), {**meta, **extra})

@@ -74,7 +74,7 @@ def test_honda_tree_is_a_tree_with_honda_ratios(seed):
             continue
         ratio = host.derived(e, "length") / host.derived(up, "length")
         assert min(abs(ratio - 0.9), abs(ratio - 0.6)) < 1e-9
-        assert math.isclose(e.attrs["width"], up.attrs["width"] * 0.7)
+        assert math.isclose(host.value(e, "width"), host.value(up, "width") * 0.7)
 
 
 def test_facade_windows_and_blinds():
@@ -118,7 +118,7 @@ def test_rosette_petals_evenly_round_the_hub(seed):
     host = run("rosette", 28, seed).host
     hub = of_kind(host, "vertex", "hub")[0]
     petals = of_kind(host, "vertex", "petal")
-    n = int(hub.attrs["total"])
+    n = int(host.value(hub, "total"))
     assert n in (5, 6, 8, 12) and len(petals) == n
     cx, cy = host.pos(hub.id)
     radii = [math.dist((cx, cy), host.pos(p.id)) for p in petals]
@@ -127,7 +127,19 @@ def test_rosette_petals_evenly_round_the_hub(seed):
                     for p in petals)
     gaps = [(b - a) for a, b in zip(angles, angles[1:] + [angles[0] + 360])]
     assert all(math.isclose(g, 360 / n, abs_tol=1e-6) for g in gaps)
-    assert all(p.attrs["d"].startswith("M ") and p.attrs["d"].endswith(" Z") for p in petals)
+    assert all(host.value(p, "d").startswith("M ") and host.value(p, "d").endswith(" Z")
+               for p in petals)
+
+
+def test_decorations_beat_declared_defaults_and_set_values_beat_both():
+    g = load_ggr(ROOT / "examples" / "facade.ggr")
+    svg = render_free_svg(run("facade", 116, 1).host, g.header)
+    windows = [line for line in svg.splitlines() if 'data-label="window"' in line]
+    walls = [line for line in svg.splitlines() if 'data-label="wall"' in line]
+    assert windows and all('fill="#28415e"' in line for line in windows)     # decorated
+    assert walls and all('fill="#d8c8a8"' in line for line in walls)         # the default
+    tiles = render_free_svg(run("tiles", 400, 2).host, load_ggr(ROOT / "examples" / "tiles.ggr").header)
+    assert len({line.split('fill="')[1][:7] for line in tiles.splitlines() if "<path" in line}) > 2
 
 
 # --- bad productions ---------------------------------------------------------------------------
