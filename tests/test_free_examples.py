@@ -239,3 +239,12 @@ def test_an_empty_mother_graph_matches_every_step():
     text = HEAD + "production seed {\n  lhs {\n  }\n  rhs {\n    p: pt\n  }\n  set p.pos = (uniform(0, 1), 0)\n}\n"
     summary = FreeEngine(parse_ggr(text), 0).run(7)
     assert summary.applied == 7 and summary.vertices == 7
+
+
+def test_the_repl_refuses_productions_with_a_message():
+    import io
+
+    from runtime.repl import Output, Session
+    s = Session(Output(io.StringIO(), io.StringIO(), colour=False))
+    with pytest.raises(UserError, match="the REPL explores angle-graph rules"):
+        s.use(load_ggr(ROOT / "examples" / "koch.ggr"), "koch.ggr")
