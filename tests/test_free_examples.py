@@ -248,3 +248,13 @@ def test_the_repl_refuses_productions_with_a_message():
     s = Session(Output(io.StringIO(), io.StringIO(), colour=False))
     with pytest.raises(UserError, match="the REPL explores angle-graph rules"):
         s.use(load_ggr(ROOT / "examples" / "koch.ggr"), "koch.ggr")
+
+
+def test_ggc_verify_refuses_productions():
+    import argparse
+
+    from compiler.compile_cmd import run_verify
+    args = argparse.Namespace(file=str(ROOT / "examples" / "koch.ggr"), max_primitives=8,
+                              seconds=None)
+    with pytest.raises(UserError, match="holds hand-written productions"):
+        run_verify(args)
