@@ -26,6 +26,10 @@ from .free_rules import (DERIVED, KINDS, MATCH_CHOICES, SETTABLE_DERIVED, Assign
 PRODUCTION_KEYS = {"priority": "int", "weight": "float", "match": "name", "spatial": "bool"}
 DAUGHTER_KEYS = {"weight": "float"}
 MAX_COORDINATE = 1e12       # as everywhere in the toolchain: beyond this, not a drawing
+# Elements in one side of a production (matching recurses once per element, and the load
+# check for self-copies is a graph isomorphism), and in the start graph.
+MAX_SIDE = 100
+MAX_START = 100_000
 
 
 @dataclass
@@ -271,6 +275,11 @@ class FreeReader:
                                       item.children[0])
                 names.add(element.name)
             (edges if item.data == "fedge" else faces).append(element)
+        limit = MAX_START if which == "start" else MAX_SIDE
+        if len(vertices) + len(edges) + len(faces) > limit:
+            raise self.b.fail(f"this {which} has {len(vertices) + len(edges) + len(faces)} "
+                              f"elements, at most {limit}", self.b._first_token(lines[0]),
+                              "split the production into smaller ones")
         return FSide(tuple(vertices.values()), tuple(edges), tuple(faces))
 
     def _vertex(self, item: Tree, ctx: FreeContext, lhs: FSide | None, which: str) -> FVertex:

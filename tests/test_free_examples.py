@@ -258,3 +258,10 @@ def test_ggc_verify_refuses_productions():
                               seconds=None)
     with pytest.raises(UserError, match="holds hand-written productions"):
         run_verify(args)
+
+
+def test_a_side_has_a_bounded_number_of_elements():
+    many = "  ".join(f"v{k}: pt" for k in range(120))
+    text = HEAD + "production big {\n  lhs {\n    " + many + "\n  }\n  rhs {\n  }\n}\n"
+    with pytest.raises(UserError, match="at most 100"):
+        parse_ggr(text)
