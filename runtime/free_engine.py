@@ -30,12 +30,17 @@ from grammar_lang.rules import Grammar
 from .free_host import Element, FreeHost
 from .free_match import Binding, Matcher
 from .generate import MAX_STALL, Summary
+from .rejections import Rejection
 
 MATCH_TRIES = 64    # matches tried per production and step before it counts as not applicable
 
 
 class _Reject(Exception):
-    """This match cannot be rewritten; the reason is counted."""
+    """This match cannot be rewritten; the reason (a Rejection) is counted."""
+
+    def __init__(self, reason: Rejection, detail: str = ""):
+        super().__init__(f"{reason}: {detail}" if detail else str(reason))
+        self.reason = reason
 
 
 class _Env:
@@ -80,7 +85,8 @@ class FreeEngine:
         self.host = FreeHost(self.defaults)
         self.step_no = 0
         self.applied: dict[int, int] = {}
-        self.reasons: dict[str, int] = {}
+        self.reasons: dict[Rejection, int] = {}
+        self.last_error = ""        # the last rejection, in words, for the summary
         if self.grammar.start is not None:
             start = self._compile(self.grammar.start)
             env = _Env(self.host, {}, self.rng)
@@ -138,7 +144,7 @@ class FreeEngine:
             else:
                 stall += 1
                 if stall >= MAX_STALL:
-                    s.stop = f"{MAX_STALL} rejected steps in a row"
+                    s.stop = f"{MAX_STALL} rejected steps in a row (the last: {self.last_error})"
                     break
         s.seconds = time.perf_counter() - t0
         return self.summary(s)
@@ -204,8 +210,9 @@ class FreeEngine:
                 return True
             except (EvalError, _Reject) as exc:
                 found = True
-                reason = str(exc) if isinstance(exc, _Reject) else f"evaluation: {exc}"
+                reason = exc.reason if isinstance(exc, _Reject) else Rejection.EVALUATION
                 self.reasons[reason] = self.reasons.get(reason, 0) + 1
+                self.last_error = str(exc) if isinstance(exc, _Reject) else f"{reason}: {exc}"
         return False if found else None
 
     def _pick(self, c: _Compiled) -> "_Shape":
@@ -232,7 +239,7 @@ class FreeEngine:
         placed = self._place(daughter, c.production.lhs, b, values)
         doomed = self._doomed(daughter, b)
         if not (doomed or daughter.grows or self._changes(daughter, b, values)):
-            raise _Reject("no change: the match would stay as it was")
+            raise _Reject(Rejection.NO_CHANGE, "the match would stay as it was")
         self._edit(daughter, b, values, placed, doomed)
 
     def _place(self, d: "_Shape", lhs: FSide, b: Binding, values) -> dict[str, list[float]]:
@@ -260,7 +267,7 @@ class FreeEngine:
                 p[1] = old[1] if math.isnan(p[1]) else p[1]
             if not (math.isfinite(p[0]) and math.isfinite(p[1])
                     and abs(p[0]) <= MAX_COORDINATE and abs(p[1]) <= MAX_COORDINATE):
-                raise _Reject("a coordinate that is not finite (or beyond ±1e12)")
+                raise _Reject(Rejection.COORDINATE, f"({p[0]:g}, {p[1]:g}) is not within ±1e12")
         return pos
 
     def _doomed(self, d: "_Shape", b: Binding) -> list[int]:
@@ -273,7 +280,7 @@ class FreeEngine:
         for v in gone:
             dangling = [k for k in self.host.incident[v] if k not in dead]
             if dangling and self.dpo:
-                raise _Reject("dangling: a deleted vertex has edges outside the match (DPO)")
+                raise _Reject(Rejection.DANGLING, "a deleted vertex has edges outside the match")
             out += dangling     # SPO: they go with it
             dead.update(dangling)
         return out + gone
