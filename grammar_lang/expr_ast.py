@@ -25,73 +25,70 @@ class Type(Enum):
 
 
 @dataclass(frozen=True)
-class Num:
+class Node:
+    """Every node's position: a 0-based offset into the expression's text, outside equality."""
+
+    at: int = field(default=0, compare=False, kw_only=True)
+
+
+@dataclass(frozen=True)
+class Num(Node):
     value: float
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Str:
+class Str(Node):
     value: str
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Bool:
+class Bool(Node):
     value: bool
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Var:
+class Var(Node):
     name: str
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Attr:
+class Attr(Node):
     """`obj.name`: an attribute of a matched element, or a vector's `x`/`y`."""
 
     obj: "Expr"
     name: str
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Call:
+class Call(Node):
     fn: str
     args: tuple["Expr", ...]
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Unary:
+class Unary(Node):
     op: str         # '-' or 'not'
     arg: "Expr"
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Binary:
+class Binary(Node):
     op: str
     left: "Expr"
     right: "Expr"
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Cond:
+class Cond(Node):
     test: "Expr"
     then: "Expr"
     other: "Expr"
-    at: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
-class Vec:
+class Vec(Node):
     x: "Expr"
     y: "Expr"
-    at: int = field(default=0, compare=False)
 
 
 Expr = Num | Str | Bool | Var | Attr | Call | Unary | Binary | Cond | Vec

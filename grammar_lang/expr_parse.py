@@ -119,34 +119,34 @@ class _ToAst(Transformer):
         if not math.isfinite(value):
             raise ExprError(f"the number {str(c[0])[:20]} is out of range", c[0].start_pos,
                             len(c[0]))
-        return ast.Num(value, c[0].start_pos)
+        return ast.Num(value, at=c[0].start_pos)
 
     def string(self, c):
-        return ast.Str(_string(c[0]), c[0].start_pos)
+        return ast.Str(_string(c[0]), at=c[0].start_pos)
 
     def true(self, c):
-        return ast.Bool(True, c[0].start_pos)
+        return ast.Bool(True, at=c[0].start_pos)
 
     def false(self, c):
-        return ast.Bool(False, c[0].start_pos)
+        return ast.Bool(False, at=c[0].start_pos)
 
     def var(self, c):
-        return ast.Var(str(c[0]), c[0].start_pos)
+        return ast.Var(str(c[0]), at=c[0].start_pos)
 
     def attr(self, c):
-        return ast.Attr(c[0], str(c[1]), c[0].at)
+        return ast.Attr(c[0], str(c[1]), at=c[0].at)
 
     def call(self, c):
-        return ast.Call(str(c[0]), tuple(c[1:]), c[0].start_pos)
+        return ast.Call(str(c[0]), tuple(c[1:]), at=c[0].start_pos)
 
     def vector(self, c):
-        return ast.Vec(c[0], c[1], c[0].at)
+        return ast.Vec(c[0], c[1], at=c[0].at)
 
     def unary(self, c):
-        return ast.Unary(str(c[0]), c[1], c[0].start_pos)
+        return ast.Unary(str(c[0]), c[1], at=c[0].start_pos)
 
     def binary(self, c):
-        return ast.Binary(str(c[1]), c[0], c[2], c[1].start_pos)
+        return ast.Binary(str(c[1]), c[0], c[2], at=c[1].start_pos)
 
     def cond(self, c):
-        return ast.Cond(c[0], c[1], c[2], c[0].at)
+        return ast.Cond(c[0], c[1], c[2], at=c[0].at)
