@@ -150,16 +150,17 @@ def run_job(job: Job, progress=None) -> Summary:
 
 
 def _run_free(job: Job, progress=None) -> Summary:
-    """Hand-written productions: their own engine (runtime.free_engine) and SVG."""
+    """Hand-written productions: their own engine (runtime.free_engine) and SVG painter."""
     from .free_engine import FreeEngine
     from .free_svg import free_drawing, write_free_svg
     engine = FreeEngine(job.grammar, job.seed, dict(job.limits))
     summary = engine.run(job.steps, progress)
-    if job.out.lower().endswith(".json"):
-        free_drawing(engine.host, {"grammar": job.name, "seed": job.seed,
-                                   "steps": summary.applied}).save(job.out)
-    else:
+    if job.out.lower().endswith(".svg"):
         write_free_svg(engine.host, job.grammar.header, job.out)
+    else:       # .json and .graphml, as for rules
+        write_drawing(free_drawing(engine.host, {"grammar": job.name, "seed": job.seed,
+                                                 "steps": summary.applied}),
+                      job.grammar, job.out)
     return summary
 
 

@@ -268,3 +268,20 @@ def test_a_side_has_a_bounded_number_of_elements():
     text = HEAD + "production big {\n  lhs {\n    " + many + "\n  }\n  rhs {\n  }\n}\n"
     with pytest.raises(UserError, match="at most 100"):
         parse_ggr(text)
+
+
+def test_ggrun_writes_productions_as_svg_json_and_graphml(tmp_path):
+    import json
+
+    import networkx as nx
+
+    from runtime.cli import main
+    for suffix in ("svg", "json", "graphml"):
+        out = tmp_path / f"tree.{suffix}"
+        assert main([str(ROOT / "examples" / "honda-tree.ggr"), "--steps", "20", "--out",
+                     str(out), "--quiet"]) == 0
+    assert (tmp_path / "tree.svg").read_text().startswith("<svg")
+    doc = json.loads((tmp_path / "tree.json").read_text())
+    assert len(doc["vertices"]) == 42 and doc["vertex_labels"][0] == "root"
+    g = nx.read_graphml(tmp_path / "tree.graphml")
+    assert g.number_of_nodes() == 42 and g.number_of_edges() == 41
