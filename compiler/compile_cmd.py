@@ -82,6 +82,10 @@ def run_verify(args) -> int:
     from .verify import verify
 
     grammar = load_ggr(args.file)
+    if grammar.is_free:
+        raise error(f"{Path(args.file).name} holds hand-written productions; 'ggc verify' "
+                    "checks the completeness of angle-graph rules", Span(args.file),
+                    "productions are not reductions of complete graphs: there is nothing to verify")
     out = Console(highlight=False, soft_wrap=True)
     err = Console(stderr=True, highlight=False, soft_wrap=True)
     if args.max_primitives < 1:

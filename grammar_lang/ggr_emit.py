@@ -14,6 +14,7 @@ import unicodedata
 
 from . import boundary as bd
 from .ggr_file import stamp
+from .expr_ast import show
 from .ggr_parser import FORMAT_VERSION, unicode
 from .graph import Side
 from .rules import Grammar, Header, Rule
@@ -41,7 +42,58 @@ def emit_ggr(grammar: Grammar) -> str:
     for rule in grammar.rules:
         out.append("")
         out.extend(_rule(rule, h, names))
+    out.extend(_free(grammar))
     return stamp("\n".join(out) + "\n")
+
+
+# --- hand-written productions (free_rules) ----------------------------------------------------
+
+def _free(grammar: Grammar) -> list[str]:
+    h, out = grammar.header, []
+    if h.vertex_labels:
+        out.append("vertices " + " ".join(name(x) for x in h.vertex_labels))
+    if h.edge_labels:
+        out.append("edges " + " ".join(name(x) for x in h.edge_labels))
+    out += [f"attribute {a.kind} {name(a.name)} = {show(a.default)}" for a in h.attributes]
+    if grammar.start is not None:
+        d = grammar.start.daughters[0]
+        out += ["", "start {"] + _free_items(d.side, None) + _sets(d) + ["}"]
+    for p in grammar.productions:
+        flags = "".join([f" priority={p.priority}", f" weight={num(p.weight)}",
+                         f" match={p.match}", " spatial" if p.spatial else ""])
+        out += ["", f"production {name(p.name)}{flags} {{", "  lhs {"]
+        out += _free_items(p.lhs, None, "    ") + ["  }"]
+        out += [f"  where {show(c.expr)}" for c in p.conditions]
+        out += [f"  let {l.name} = {show(l.expr)}" for l in p.lets]
+        for d in p.daughters:
+            out += [f"  rhs weight={num(d.weight)} {{"] + _free_items(d.side, p.lhs, "    ")
+            out += ["  }"] + [f"  let {l.name} = {show(l.expr)}" for l in d.lets]
+            out += _sets(d)
+        out.append("}")
+    return out
+
+
+def _free_items(side, lhs, indent: str = "  ") -> list[str]:
+    items = []
+    for v in side.vertices:
+        at = f" ({num(v.pattern[0])}, {num(v.pattern[1])})" if v.pattern is not None else ""
+        if lhs is not None and v.kept:
+            if lhs.vertex(v.name).label == v.label:     # kept (a wildcard too), same label
+                items.append(f"{v.name}{at}")
+                continue
+        items.append(f"{name(v.name)}: {'*' if v.label is None else name(v.label)}{at}")
+    for e in side.edges:
+        label = "*" if e.label is None else name(e.label)
+        items.append(f"{e.name + ' = ' if e.name else ''}{e.u} {'->' if e.directed else '--'} "
+                     f"{e.v} {label}")
+    for f in side.faces:
+        label = "*" if f.label is None else name(f.label)
+        items.append(f"{f.name + ' = ' if f.name else ''}face {label} ({' '.join(f.cycle)})")
+    return _wrap(items, indent) if items else []
+
+
+def _sets(d) -> list[str]:
+    return [f"  set {a.element}.{a.key} = {show(a.expr)}" for a in d.sets]
 
 
 def _header(h: Header, names: list[str]) -> list[str]:

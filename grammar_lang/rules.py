@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from .diagnostics import Span
 from .example import EdgeLabel, Primitive
 from .frame import Frame
+from .free_rules import AttrDecl, Production
 from .graph import Side
 from .source import Decoration, EdgeClass, Options
 
@@ -49,12 +50,23 @@ class Header:
     mode: str = "dpo"                 # 'dpo', or 'spo' (dangling edges are deleted)
     complete: bool | None = None      # None: not known (hand-written)
     frame: Frame | None = None        # the border of the space; generation starts from it
+    # Hand-written productions (free_rules): their labels and declared attributes.
+    vertex_labels: tuple[str, ...] = ()
+    edge_labels: tuple[str, ...] = ()
+    attributes: tuple[AttrDecl, ...] = ()
 
 
 @dataclass(frozen=True)
 class Grammar:
     header: Header
     rules: tuple[Rule, ...]
+    productions: tuple[Production, ...] = ()
+    start: Production | None = None     # the host graph a run of productions starts from
+
+    @property
+    def is_free(self) -> bool:
+        """Whether this grammar holds hand-written productions (run by runtime.free_engine)."""
+        return bool(self.productions) or self.start is not None
 
     @property
     def rings(self):

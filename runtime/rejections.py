@@ -23,6 +23,11 @@ class Rejection(str, Enum):
     CROSSING = "crossing"                      # an edge crosses or touches another
     FACE_LABELS = "face labels"                # a face would get the wrong label
     NO_PLACEMENT = "no placement"
+    # hand-written productions (free_engine)
+    EVALUATION = "evaluation"                  # an expression has no finite value
+    COORDINATE = "coordinate not finite"       # a vertex placed beyond ±1e12, or not finite
+    DANGLING = "dangling"                      # DPO: a deleted vertex keeps other edges
+    NO_CHANGE = "no change"                    # the step would leave its match as it was
 
     __str__ = str.__str__
     __format__ = str.__format__

@@ -105,6 +105,10 @@ class Session:
 
     def use(self, grammar: Grammar, path: str) -> None:
         """Start a session on a grammar already in memory."""
+        if grammar.is_free:
+            raise error(f"{Path(path).name} holds hand-written productions; the REPL explores "
+                        "angle-graph rules", None,
+                        f"run them with 'ggrun {Path(path).name} --steps N --out FILE.svg'")
         o = self.options
         names = [l.name for l in grammar.header.labels]
         try:

@@ -134,6 +134,8 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
 
 def run_job(job: Job, progress=None) -> Summary:
     """Generate one drawing and write it; runs in a worker process for --jobs."""
+    if job.grammar.is_free:
+        return _run_free(job, progress)
     from .costs import parse_cost       # numpy and the engine load only when a run starts,
     from .generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
@@ -144,6 +146,21 @@ def run_job(job: Job, progress=None) -> Summary:
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
     write_drawing(drawing, job.grammar, job.out)
+    return summary
+
+
+def _run_free(job: Job, progress=None) -> Summary:
+    """Hand-written productions: their own engine (runtime.free_engine) and SVG painter."""
+    from .free_engine import FreeEngine
+    from .free_svg import free_drawing, write_free_svg
+    engine = FreeEngine(job.grammar, job.seed, dict(job.limits))
+    summary = engine.run(job.steps, progress)
+    if job.out.lower().endswith(".svg"):
+        write_free_svg(engine.host, job.grammar.header, job.out)
+    else:       # .json and .graphml, as for rules
+        write_drawing(free_drawing(engine.host, {"grammar": job.name, "seed": job.seed,
+                                                 "steps": summary.applied}),
+                      job.grammar, job.out)
     return summary
 
 
@@ -173,6 +190,10 @@ def run_command(args: argparse.Namespace) -> int:
     grammar = load_grammar(args.file)
     from .costs import parse_cost
     # Validate the cost spec once, before any work.
+    if grammar.is_free and (args.cost or args.direction or args.extent):
+        raise error("--cost, --direction and --extent apply to angle-graph rules, not to "
+                    "productions",
+                    None, "productions run forward, one step at a time, by priority and weight")
     parse_cost(args.cost, [l.name for l in grammar.header.labels], args.steps)
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)
