@@ -64,6 +64,8 @@ class Report:
     remaining: int = 0
     remaining_boundaries: tuple[str, ...] = ()
     frame_rules_dropped: int = 0      # rules that would create, move or delete the frame
+    # The same few remaining graphs, for drawing (`ggc report`); not part of the JSON summary.
+    remaining_sides: tuple[Side, ...] = field(default=(), compare=False)
 
     @property
     def verdict(self) -> str:
@@ -77,6 +79,7 @@ class Report:
 
     def as_dict(self) -> dict:
         d = asdict(self)
+        del d["remaining_sides"]
         d["verdict"] = self.verdict
         return d
 
@@ -506,6 +509,7 @@ class Inference:
             remaining_boundaries=tuple(self.ex.format(n.graph.string(self.rings))
                                        for n in shown),
             frame_rules_dropped=dropped,
+            remaining_sides=tuple(n.graph.side() for n in shown),
         )
         return CompileResult(Grammar(header(self.ex, not limited, self.frame), rules), report)
 

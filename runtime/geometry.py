@@ -500,3 +500,36 @@ def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
 
 def _dist(p: Point, q: Point) -> float:
     return ((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2) ** 0.5
+
+
+
+def place_side(host: Host, side, rng: np.random.Generator,
+               tries: int = 8) -> list[dict[int, Point]] | None:
+    """Positions for the vertices of an angle graph on its own (a rule side, say, drawn by
+    `ggc report`), one dict per connected component (`side.components()` order), each placed
+    around the origin by the same solver as a generation step: every edge has its label's
+    direction and a length its class allows, and no two edges cross. Open half-edges stay
+    open. Components are placed apart (aimed at one spot they would almost always cross), and
+    how to arrange them is the caller's choice. None when `tries` rounds of samples find no
+    placement for some component. `host` must be empty; it is left unchanged."""
+    from .rewrite import Change
+    assert len(host) == 0, "place_side draws on an empty host"
+    out = []
+    for comp in side.components():
+        keep = set(comp)
+        new = tuple((v, side.vertices[v]) for v in comp)
+        glue = tuple(((v, i), (w, j)) for v, i, w, j in side.edges if v in keep)
+        partner: dict = {(v, i): None for v, p in new for i in range(len(host.t.rings[p]))}
+        for a, b in glue:
+            partner[a], partner[b] = b, a
+        change = Change(None, None, (), new, glue, (), partner)
+        pos = None
+        for _ in range(tries):
+            solver = Solver(host, change, rng, lambda: (0.0, 0.0), floating=True)
+            pos = next((p.positions for p in solver.placements()), None)
+            if pos is not None:
+                break
+        if pos is None:
+            return None
+        out.append(pos)
+    return out

@@ -75,6 +75,27 @@ def _style_for(decos: list[tuple[str, dict]], *names: str) -> dict:
     return out
 
 
+def face_paint(label: str, plain: list[str], exterior: str,
+               face_decos: list[tuple[str, dict]]) -> tuple[str | None, dict]:
+    """A face label's fill (None: unpainted) and decoration style; `plain` lists the face
+    labels that take palette colours, in order."""
+    style = _style_for(face_decos, label)
+    if "fill" in style:
+        return style["fill"], style
+    if label == exterior:
+        return None, style
+    if _hex_colour(label):
+        return label.lower(), style
+    return FILL_PALETTE[plain.index(label) % len(FILL_PALETTE)], style
+
+
+def edge_paint(cls: str, class_order: list[str], edge_decos: list[tuple[str, dict]]) -> dict:
+    """An edge class's decoration style, with its stroke colour filled in."""
+    style = _style_for(edge_decos, cls)
+    style.setdefault("stroke", STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)])
+    return style
+
+
 def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None) -> str:
     """The drawing as SVG text. `reference` (an Example, Header or Grammar) supplies the
     exterior's name, the order of face labels and edge classes, the unit and decorations;
@@ -120,14 +141,7 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
     plain = [n for n in label_order if n != exterior and not _hex_colour(n)]
 
     def face_style(label: str) -> tuple[str | None, dict]:
-        style = _style_for(face_decos, label)
-        if "fill" in style:
-            return style["fill"], style
-        if label == exterior:
-            return None, style
-        if _hex_colour(label):
-            return label.lower(), style
-        return FILL_PALETTE[plain.index(label) % len(FILL_PALETTE)], style
+        return face_paint(label, plain, exterior, face_decos)
 
     head = [f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
             f'viewBox="{" ".join(fmt(x) for x in vb)}" width="{fmt(vb[2] * k)}" '
@@ -192,8 +206,8 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
     body.append('  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">')
     images: list[str] = []
     for cls in sorted(by_class, key=class_order.index):
-        style = _style_for(edge_decos, cls)
-        colour = style.get("stroke", STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)])
+        style = edge_paint(cls, class_order, edge_decos)
+        colour = style["stroke"]
         width = float(style.get("width", STROKE_WIDTH * unit))
         d = " ".join(f"M {pt(xy[ends[i, 0]])} L {pt(xy[ends[i, 1]])}" for i in by_class[cls])
         extra = f' stroke-opacity="{fmt(style["opacity"])}"' if "opacity" in style else ""
