@@ -32,8 +32,9 @@ def read_text(path: str | Path) -> str:
     return text
 
 
-def atomic_write(path: str | Path, text: str) -> None:
-    """Write `text` so that `path` holds either its old or its new content, never a torn file."""
+def atomic_write(path: str | Path, text: str | bytes) -> None:
+    """Write `text` (or bytes) so that `path` holds either its old or its new content, never a
+    torn file."""
     p = Path(path)
     try:
         p.parent.mkdir(parents=True, exist_ok=True)
@@ -48,7 +49,9 @@ def atomic_write(path: str | Path, text: str) -> None:
         except OSError:
             mode = 0o666 & ~_umask()
         os.chmod(tmp, mode)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+        binary = isinstance(text, bytes)
+        with (os.fdopen(fd, "wb") if binary else
+              os.fdopen(fd, "w", encoding="utf-8", newline="\n")) as fh:
             fh.write(text)
             fh.flush()
             os.fsync(fh.fileno())

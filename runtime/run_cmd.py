@@ -25,8 +25,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help=f"rule applications per drawing (default {DEFAULT_STEPS})")
     p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
     p.add_argument("--out", metavar="PATH",
-                   help="output file, .svg, .json or .graphml by extension "
+                   help="output file, .svg, .png, .json or .graphml by extension "
                         "(default: FILE's name + .svg)")
+    p.add_argument("--width", type=int, metavar="PX", help="PNG width in pixels")
+    p.add_argument("--scale", type=float, metavar="F",
+                   help="PNG size as F times the SVG's (800 px along the longer side)")
     p.add_argument("--count", type=int, default=1, metavar="K",
                    help="write K drawings with seeds S…S+K−1, named PATH-0001.svg …")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="parallel processes")
@@ -58,6 +61,7 @@ class Job:
     out: str
     name: str
     extent: tuple[float, float] | None = None
+    png: tuple[int | None, float | None] = (None, None)     # --width, --scale
 
 
 def load_grammar(path: str) -> Grammar:
@@ -145,7 +149,7 @@ def run_job(job: Job, progress=None) -> Summary:
     summary = engine.run(job.steps, progress)
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
-    write_drawing(drawing, job.grammar, job.out)
+    write_drawing(drawing, job.grammar, job.out, job.png)
     return summary
 
 
@@ -157,6 +161,10 @@ def _run_free(job: Job, progress=None) -> Summary:
     summary = engine.run(job.steps, progress)
     if job.out.lower().endswith(".svg"):
         write_free_svg(engine.host, job.grammar.header, job.out)
+    elif job.out.lower().endswith(".png"):
+        from grammar_lang.png import write_png
+        from .free_svg import render_free_svg
+        write_png(render_free_svg(engine.host, job.grammar.header), job.out, *job.png)
     else:       # .json and .graphml, as for rules
         write_drawing(free_drawing(engine.host, {"grammar": job.name, "seed": job.seed,
                                                  "steps": summary.applied}),
@@ -164,13 +172,19 @@ def _run_free(job: Job, progress=None) -> Summary:
     return summary
 
 
-def write_drawing(drawing, grammar: Grammar, path: str) -> None:
+def write_drawing(drawing, grammar: Grammar, path: str,
+                  png: tuple[int | None, float | None] = (None, None)) -> None:
     if path.lower().endswith(".json"):
         drawing.save(path)
         return
     if path.lower().endswith(".graphml"):
         from .graphml_out import write_graphml
         write_graphml(drawing, path)
+        return
+    if path.lower().endswith(".png"):
+        from grammar_lang.png import write_png
+        from .svg_out import render_svg
+        write_png(render_svg(drawing, grammar.header), path, *png)
         return
     from .svg_out import write_svg
     write_svg(drawing, grammar.header, path)
@@ -184,9 +198,11 @@ def run_command(args: argparse.Namespace) -> int:
             raise error(f"--{flag} {getattr(args, flag)} is out of range", None,
                         f"--{flag} takes a whole number of at least {0 if flag == 'steps' else 1}")
     out = args.out or str(Path(Path(args.file).name).with_suffix(".svg"))
-    if Path(out).suffix.lower() not in (".svg", ".json", ".graphml"):
+    if Path(out).suffix.lower() not in (".svg", ".png", ".json", ".graphml"):
         raise error(f"--out {out}: unknown output format", None,
-                    "end the name with .svg, .json or .graphml")
+                    "end the name with .svg, .png, .json or .graphml")
+    from grammar_lang.png import check_size
+    check_size(args.width, args.scale)
     grammar = load_grammar(args.file)
     from .costs import parse_cost
     # Validate the cost spec once, before any work.
@@ -198,7 +214,8 @@ def run_command(args: argparse.Namespace) -> int:
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)
     jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
-                _parse_limits(args.limit), both, path, Path(args.file).name, extent)
+                _parse_limits(args.limit), both, path, Path(args.file).name, extent,
+                (args.width, args.scale))
             for k, path in enumerate(output_paths(out, args.count))]
     show = not args.quiet
     summaries: list[Summary]

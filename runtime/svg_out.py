@@ -55,7 +55,7 @@ class _Fmt:
         return "0" if text in ("-0", "") else text
 
 
-def _decorations(reference, kind: str) -> list[tuple[str, dict]]:
+def decorations(reference, kind: str) -> list[tuple[str, dict]]:
     if reference is None:
         return []
     return [(d.target, dict(d.props)) for d in getattr(reference, "decorations", ())
@@ -130,9 +130,9 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
                 pass
         return Path(path).as_uri()
 
-    face_decos = _decorations(ref, "face")
-    edge_decos = _decorations(ref, "edge")
-    vertex_decos = _decorations(ref, "vertex")
+    face_decos = decorations(ref, "face")
+    edge_decos = decorations(ref, "edge")
+    vertex_decos = decorations(ref, "vertex")
     label_order = list(ref.face_labels) if ref else []
     for e in drawing.edges:
         for name in (e.left, e.right):
