@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Callable, Sequence
 
 from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import ArgumentParser, common_flags, run
 
 
-def build_parser() -> ArgumentParser:
+def build_parser(more: Callable | None = None) -> ArgumentParser:
+    """The `ggc` parser; `more(subparsers)` adds commands that live above the compiler (the
+    report, see report.ggc), so that this module imports nothing from the runtime."""
     parser = ArgumentParser(prog="ggc", description=__doc__)
     common_flags(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
@@ -40,11 +42,16 @@ def build_parser() -> ArgumentParser:
     p.add_argument("--seconds", type=float, default=None, metavar="S",
                    help="stop after S seconds and report a partial check (default: no limit)")
     common_flags(p)
+    if more is not None:
+        more(sub)
     return parser
 
 
 def _main(argv: Sequence[str]) -> int:
-    args = build_parser().parse_args(argv)
+    return dispatch(build_parser().parse_args(argv))
+
+
+def dispatch(args) -> int:
     pin_blas_threads()
     if args.command in ("check", "primitives"):
         from . import inspect_cmd
