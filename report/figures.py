@@ -92,6 +92,7 @@ class Drafter:
         self.pal = Palette.build(header)
         self.seed = seed
         self.failed: list[str] = []     # sides the solver could not place
+        self.crossed: list[str] = []    # sides drawn with crossing edges (no planar placement)
 
     # --- pieces -------------------------------------------------------------------------------
     def _edge(self, piece: Piece, a, b, token: int) -> None:
@@ -145,10 +146,13 @@ class Drafter:
             f'</title></circle>')
         piece.grow(*at, 4)
 
-    def _pieces(self, side: Side, rng) -> list[Piece] | None:
-        placed = place_side(self.host, side, rng)
-        if placed is None:
+    def _pieces(self, side: Side, rng, key: str) -> list[Piece] | None:
+        try:
+            placed, planar = place_side(self.host, side, rng)
+        except ValueError:
             return None
+        if not planar:
+            self.crossed.append(key)
         number = {s: k + 1 for k, s in enumerate(side.open_slots())}
         partner = side.partner()
         rings = [p.ring for p in self.h.primitives]
@@ -185,7 +189,7 @@ class Drafter:
             return [f'<text x="20" y="12" text-anchor="middle" font-size="34" fill="#555" '
                     f'{FONT}>∅</text>'], 40.0, 44.0
         rng = np.random.default_rng([self.seed, *key.encode()])
-        pieces = self._pieces(side, rng)
+        pieces = self._pieces(side, rng, key)
         if pieces is None:
             self.failed.append(key)
             return [f'<text x="0" y="5" font-size="13" fill="#b00" {FONT}>(no placement '

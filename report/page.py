@@ -40,7 +40,7 @@ th{color:var(--mute);font-weight:600}
 .card h3{margin:0 0 4px;font-size:15px}
 .card .fig{overflow:auto} .card svg,.card img{display:block;max-width:100%;height:auto}
 .rule .fig svg{max-height:420px;width:auto}
-.meta{color:var(--mute);font-size:12.5px}
+.meta{color:var(--mute);font-size:12.5px} .meta.warn{color:var(--warn)}
 .bs{font-family:"DejaVu Sans Mono",monospace;font-size:13px;word-break:break-all}
 .chips a{display:inline-block;margin:2px 3px 0 0;padding:0 6px;border-radius:9px;background:#eef1f5;
  color:var(--fg);text-decoration:none;font-size:12px}
@@ -184,13 +184,17 @@ class Page:
             search = " ".join([rule.name, *(self.names[t >> 1] for t in toks), *sorted(prims)])
             line = f", line {rule.span.line} of {esc(self.s.ggr_name)}" if rule.span else ""
             kind = "starter" if rule.is_starter else "rule"
+            svg = self.d.rule_svg(rule)
+            crossed = any(k.startswith(rule.name + "/") for k in self.d.crossed)
+            note = ('<div class="meta warn">drawn with crossing edges: the solver found no '
+                    "planar placement for a side</div>") if crossed else ""
             cards.append(
                 f'<div class="card rule" id="rule-{r}" data-search="{esc(search.lower())}">'
                 f"<h3>{esc(rule.name)} <span class=\"meta\">{kind}</span></h3>"
                 f'<div class="meta">priority {rule.priority}, weight {rule.weight:g}, '
                 f"{esc(self.g.header.mode)}{line}</div>"
                 f'<div class="bs">∂ = {esc(self.fmt(rule.lhs.tokens(self.rings)))}</div>'
-                f'<div class="fig">{self.d.rule_svg(rule)}</div>'
+                f'<div class="fig">{svg}</div>{note}'
                 f'<div class="chips">{chips}</div></div>')
         return (f'<section id="rules"><h2>Rules ({len(self.g.rules)})</h2><p class="meta">Left '
                 "side ⇄ right side; a starter is ∅ ⇄ its graph. Numbered markers are the "

@@ -54,9 +54,11 @@ class Placement:
 class Solver:
     def __init__(self, host: Host, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
-                 floating: bool = False, cache: SystemCache | None = None):
+                 floating: bool = False, cache: SystemCache | None = None,
+                 planar: bool = True):
         self.host, self.change, self.rng = host, change, rng
         self.cache = SystemCache() if cache is None else cache
+        self.planar = planar          # False: skip the crossing tests (a figure's last resort)
         self.center, self.I, self.J = center, I, J
         # Where new vertices are aimed, for the doomed-round test; a floating component's
         # centre varies per sample, but only by a translation, which moves no length.
@@ -335,7 +337,7 @@ class Solver:
                                          if self.prim(v) not in self.host.on_border):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
-        if not self._planar(pos, edges):
+        if self.planar and not self._planar(pos, edges):
             return None
         return pos
 
@@ -503,18 +505,20 @@ def _dist(p: Point, q: Point) -> float:
 
 
 
+
 def place_side(host: Host, side, rng: np.random.Generator,
-               tries: int = 8) -> list[dict[int, Point]] | None:
+               tries: int = 4) -> tuple[list[dict[int, Point]], bool]:
     """Positions for the vertices of an angle graph on its own (a rule side, say, drawn by
     `ggc report`), one dict per connected component (`side.components()` order), each placed
     around the origin by the same solver as a generation step: every edge has its label's
-    direction and a length its class allows, and no two edges cross. Open half-edges stay
-    open. Components are placed apart (aimed at one spot they would almost always cross), and
-    how to arrange them is the caller's choice. None when `tries` rounds of samples find no
-    placement for some component. `host` must be empty; it is left unchanged."""
+    direction and a length its class allows. Components are placed apart (aimed at one spot
+    they would almost always cross); how to arrange them is the caller's choice. Open
+    half-edges stay open. The flag says whether the placement is planar: a component for
+    which `tries` rounds of samples find no crossing-free placement is placed without the
+    crossing tests. `host` must be empty; it is left unchanged."""
     from .rewrite import Change
     assert len(host) == 0, "place_side draws on an empty host"
-    out = []
+    out, planar = [], True
     for comp in side.components():
         keep = set(comp)
         new = tuple((v, side.vertices[v]) for v in comp)
@@ -524,12 +528,14 @@ def place_side(host: Host, side, rng: np.random.Generator,
             partner[a], partner[b] = b, a
         change = Change(None, None, (), new, glue, (), partner)
         pos = None
-        for _ in range(tries):
-            solver = Solver(host, change, rng, lambda: (0.0, 0.0), floating=True)
+        for k in range(tries + 1):
+            solver = Solver(host, change, rng, lambda: (0.0, 0.0), floating=True,
+                            planar=k < tries)
             pos = next((p.positions for p in solver.placements()), None)
             if pos is not None:
                 break
-        if pos is None:
-            return None
+        if pos is None:       # no sample meets the length classes (an over-constrained side)
+            raise ValueError("no placement meets the edge classes")
+        planar = planar and k < tries
         out.append(pos)
-    return out
+    return out, planar
