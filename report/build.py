@@ -77,7 +77,10 @@ def load_subject(path: str) -> Subject:
     if suffix == ".ggr":
         example = _named_example(grammar, p)
         verdict = _recorded_verdict(grammar)
-    return Subject(str(p), grammar, text, name, example, verdict, {"load and compile": seconds})
+    times = {"load and compile": seconds}
+    if suffix != ".ggr":
+        times["of which inference"] = result.report.seconds
+    return Subject(str(p), grammar, text, name, example, verdict, times)
 
 
 def _compiled_verdict(r) -> Verdict:
@@ -85,8 +88,7 @@ def _compiled_verdict(r) -> Verdict:
               ("hierarchy graphs", f"{r.hierarchy_graphs} ({r.irreducible} irreducible, "
                                    f"{r.pruned} pruned, {r.generations} generations)"),
               ("rules", f"{r.rules} + {r.starters} starters"),
-              ("limits hit", ", ".join(r.limits_hit) or "none"),
-              ("compile time", f"{r.seconds:.2f} s"))
+              ("limits hit", ", ".join(r.limits_hit) or "none"))
     return Verdict(r.complete, r.verdict, counts, r.remaining_sides, r.remaining_boundaries)
 
 

@@ -32,6 +32,7 @@ def workdir(tmp_path_factory):
 CLI_COMMANDS = commands(ROOT / "docs" / "cli.md")
 README_COMMANDS = commands(ROOT / "README.md")
 SCENES_COMMANDS = commands(ROOT / "docs" / "scenes.md")
+REPORT_COMMANDS = commands(ROOT / "docs" / "report.md")
 
 
 def run(command: str, cwd: Path) -> subprocess.CompletedProcess:
@@ -46,7 +47,8 @@ def test_the_docs_have_commands():
     assert len(CLI_COMMANDS) >= 8 and len(README_COMMANDS) >= 6
 
 
-@pytest.mark.parametrize("command", CLI_COMMANDS + README_COMMANDS + SCENES_COMMANDS)
+@pytest.mark.parametrize("command", CLI_COMMANDS + README_COMMANDS + SCENES_COMMANDS
+                         + REPORT_COMMANDS)
 def test_documented_command_runs(command, workdir):
     res = run(command, workdir)
     assert res.returncode == 0, res.stderr

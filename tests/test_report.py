@@ -210,7 +210,7 @@ def test_ggc_draw_marks_every_vertex(tmp_path):
     text = out.read_text()
     ex = load_example(CORPUS / "h-complex.svg")
     assert text.count("data-primitive=") == len(ex.graph.vertices)
-    assert text.count("data-label=") >= 1
+    assert text.count("data-class=") >= 1
     png = tmp_path / "h.png"
     assert ggc(["draw", str(CORPUS / "h-complex.svg"), "-o", str(png), "--width", "200"]) == 0
     assert _png(png).size[0] == 200
