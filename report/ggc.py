@@ -127,6 +127,9 @@ def _write_pngs(folder: Path, subject, drafter, shots, width, scale) -> None:
 
 def _main(argv: Sequence[str]) -> int:
     args = cli.build_parser(add_commands).parse_args(argv)
+    if args.command in ("report", "draw"):
+        from grammar_lang.blas import pin_blas_threads
+        pin_blas_threads()
     if args.command == "report":
         return run_report(args)
     if args.command == "draw":

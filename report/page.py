@@ -120,7 +120,8 @@ class Page:
         v, s = self.s.verdict, self.s
         kind = "ok" if v.complete else ("unknown" if v.complete is None else "limited")
         rows = list(v.counts) + [("mode", self.g.header.mode),
-                                 ("limits", ", ".join(f"{k}={val:g}" for k, val in
+                                 ("limits", ", ".join(f"{k}={val:g}" if val is not None else f"{k}=none"
+                                                      for k, val in
                                                       asdict(self.g.header.options.limits).items()))]
         facts = "".join(f"<tr><td>{esc(a)}</td><td>{esc(b)}</td></tr>" for a, b in rows)
         facts += TIMES if self.show_times else ""

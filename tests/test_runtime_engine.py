@@ -182,7 +182,8 @@ def test_cli_writes_identical_json_for_the_same_seed(tmp_path):
     (["--cost", "nope"], "unknown cost"),
     (["--cost", "label:zz"], "no edge label"),
     (["--limit", "x"], "PRIORITY=N"),
-    (["--out", "a.png"], "unknown output format"),
+    (["--out", "a.bmp"], "unknown output format"),
+    (["--out", "a.png", "--width", "0"], "--width 0 is out of range"),
     (["--count", "0"], "out of range"),
 ])
 def test_cli_bad_options_are_user_errors(tmp_path, args, needle):
