@@ -242,15 +242,15 @@ class Drafter:
                 f'stroke="{colour}" stroke-width="2.5"/>'
                 f'<path d="M {num(tip[0])} {num(tip[1])} L {num(head[0][0])} {num(head[0][1])} '
                 f'L {num(head[1][0])} {num(head[1][1])} Z" fill="{colour}"/>'
-                f'<text x="{num(tip[0] + 16 * ux)}" y="{num(tip[1] + 16 * uy + 4)}" '
-                f'text-anchor="middle" font-size="12" {FONT}>{esc(self.pal.token(tok))}'
+                f'<text x="{num(tip[0] + 22 * ux)}" y="{num(tip[1] + 22 * uy + 5)}" '
+                f'text-anchor="middle" font-size="15" {FONT}>{esc(self.pal.token(tok))}'
                 f'<title>half-edge {k + 1} of the ring: {esc(self.pal.token(tok))}, '
                 f'{num(lab.direction(bool(tok & 1)))}°</title></text>')
         parts.append(f'<circle r="5" fill="{self.pal.prim_colour(prim)}" stroke="#222"/>')
-        span = r + 34
+        span = r + 44
         return (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{num(-span)} {num(-span)} '
-                f'{num(2 * span)} {num(2 * span)}" width="{num(1.3 * span)}" '
-                f'height="{num(1.3 * span)}" role="img"><title>{esc(p.name)}</title>'
+                f'{num(2 * span)} {num(2 * span)}" width="{num(1.6 * span)}" '
+                f'height="{num(1.6 * span)}" role="img"><title>{esc(p.name)}</title>'
                 + "".join(parts) + "</svg>")
 
 

@@ -34,7 +34,7 @@ table{border-collapse:collapse;background:#fff}
 td,th{padding:4px 10px;border-bottom:1px solid var(--line);text-align:left;vertical-align:top}
 th{color:var(--mute);font-weight:600}
 .facts td:first-child{color:var(--mute)}
-.grid{display:flex;flex-wrap:wrap;gap:14px}
+.grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
 .card{background:#fff;border:1px solid var(--line);border-radius:8px;padding:10px 12px;
  content-visibility:auto;contain-intrinsic-size:auto 260px;max-width:100%}
 .card h3{margin:0 0 4px;font-size:15px}
@@ -48,6 +48,7 @@ th{color:var(--mute);font-weight:600}
 .example img{max-height:560px;width:auto;background:#fff}
 .gallery .card{width:320px} .gallery img{width:100%}
 [hidden]{display:none!important}
+section,.card,tr{scroll-margin-top:60px}
 :target{outline:3px solid #f2b705}
 """
 
