@@ -85,6 +85,9 @@ def run_report(args) -> int:
     if not 0 <= args.gallery <= MAX_GALLERY:
         raise error(f"--gallery {args.gallery} is out of range", None,
                     f"give 0 to {MAX_GALLERY} drawings")
+    if (args.width is not None or args.scale is not None) and not args.png:
+        raise error("--width and --scale size the PNG files; they need --png DIR", None,
+                    "add --png DIR, or leave the size out")
     if args.png:
         check_size(args.width, args.scale)
     out = Path(args.output or Path(args.file).stem + ".html")
@@ -103,6 +106,9 @@ def run_report(args) -> int:
         _write_pngs(Path(args.png), subject, drafter, shots, args.width, args.scale)
     for key in drafter.failed:
         sys.stderr.write(f"note: no placement found for {key}; it is shown as text\n")
+    if drafter.crossed:
+        sys.stderr.write(f"note: {len(drafter.crossed)} rule sides have no crossing-free "
+                         "placement and are drawn with crossing edges (their cards say so)\n")
     sys.stderr.write(f"{out}: {len(subject.grammar.rules)} rules, {len(shots)} gallery "
                      f"drawings; {subject.verdict.text}\n")
     return 0

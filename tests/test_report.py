@@ -124,6 +124,7 @@ def test_text_from_user_files_is_escaped():
 @pytest.mark.parametrize("args,message", [
     (["--gallery", "-1"], "--gallery -1 is out of range"),
     (["--png", "d", "--width", "0"], "--width 0 is out of range"),
+    (["--scale", "2"], "they need --png DIR"),
 ])
 def test_report_rejects_bad_options(args, message, tmp_path, capsys):
     code = ggc(["report", str(ROOT / "examples" / "tree.gg"), "-o", str(tmp_path / "x.html"),
