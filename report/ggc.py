@@ -11,7 +11,7 @@ from typing import Sequence
 
 from compiler import cli
 from grammar_lang.cli_support import common_flags, run
-from grammar_lang.diagnostics import Span, error
+from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import atomic_write
 
 from .build import MAX_GALLERY
@@ -95,9 +95,15 @@ def run_report(args) -> int:
     t0 = time.perf_counter()
     drafter = Drafter(subject.grammar.header, args.seed)
     t1 = time.perf_counter()
-    shots = gallery(subject.grammar, [args.seed + k for k in range(args.gallery)], args.steps)
+    shots, trouble = [], ""
+    try:
+        shots = gallery(subject.grammar, [args.seed + k for k in range(args.gallery)],
+                        args.steps)
+    except UserError as exc:      # the grammar cannot be run (say, its frame): say so
+        trouble = exc.diagnostics[0].message
+        sys.stderr.write(f"note: no gallery: {trouble}\n")
     subject.times["gallery"] = time.perf_counter() - t1
-    page = Page(subject, drafter, shots, not args.no_times)
+    page = Page(subject, drafter, shots, not args.no_times, trouble)
     t2 = time.perf_counter()
     text = page.html()
     subject.times["figures"] = time.perf_counter() - t2 + (t1 - t0)
@@ -107,8 +113,9 @@ def run_report(args) -> int:
     for key in drafter.failed:
         sys.stderr.write(f"note: no placement found for {key}; it is shown as text\n")
     if drafter.crossed:
-        sys.stderr.write(f"note: {len(drafter.crossed)} rule sides have no crossing-free "
-                         "placement and are drawn with crossing edges (their cards say so)\n")
+        sys.stderr.write(f"note: {len(drafter.crossed)} rule sides have no placement that "
+                         "meets every test; they are drawn keeping only the edge directions "
+                         "(their cards say so)\n")
     sys.stderr.write(f"{out}: {len(subject.grammar.rules)} rules, {len(shots)} gallery "
                      f"drawings; {subject.verdict.text}\n")
     return 0

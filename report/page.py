@@ -80,8 +80,10 @@ TIMES = "<!--times-->"
 
 
 class Page:
-    def __init__(self, subject: Subject, drafter: Drafter, shots: list[Shot], times: bool):
+    def __init__(self, subject: Subject, drafter: Drafter, shots: list[Shot], times: bool,
+                 gallery_error: str = ""):
         self.s, self.d, self.shots, self.show_times = subject, drafter, shots, times
+        self.gallery_error = gallery_error
         self.g: Grammar = subject.grammar
         self.rings = [p.ring for p in self.g.header.primitives]
         self.names = [l.name for l in self.g.header.labels]
@@ -109,7 +111,7 @@ class Page:
                  '<nav><a href="#example">Example</a><a href="#labels">Labels</a>'
                  '<a href="#primitives">Primitives</a><a href="#rules">Rules</a>'
                  + ('<a href="#remaining">Remaining</a>' if s.verdict.remaining else "")
-                 + ('<a href="#gallery">Gallery</a>' if self.shots else "")
+                 + ('<a href="#gallery">Gallery</a>' if self.shots or self.gallery_error else "")
                  + '<input id="q" type="search" placeholder="filter by label, rule or primitive"'
                  ' aria-label="filter"></nav><main>',
                  self._example(), self._labels(), self._primitives(), self._rules(),
@@ -188,8 +190,9 @@ class Page:
             kind = "starter" if rule.is_starter else "rule"
             svg = self.d.rule_svg(rule)
             crossed = any(k.startswith(rule.name + "/") for k in self.d.crossed)
-            note = ('<div class="meta warn">drawn with crossing edges: the solver found no '
-                    "planar placement for a side</div>") if crossed else ""
+            note = ('<div class="meta warn">approximate: no placement of a side met every '
+                    "test (class lengths, tiles, no crossings); it is drawn keeping only the "
+                    "edge directions</div>") if crossed else ""
             cards.append(
                 f'<div class="card rule" id="rule-{r}" data-search="{esc(search.lower())}">'
                 f"<h3>{esc(rule.name)} <span class=\"meta\">{kind}</span></h3>"
@@ -218,6 +221,9 @@ class Page:
                 '<div class="grid">' + "".join(cards) + "</div></section>")
 
     def _gallery(self) -> str:
+        if self.gallery_error:
+            return (f'<section id="gallery"><h2>Gallery</h2><p class="meta warn">The runtime '
+                    f"could not grow drawings: {esc(self.gallery_error)}</p></section>")
         if not self.shots:
             return ""
         cards = "".join(

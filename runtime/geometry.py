@@ -24,6 +24,7 @@ tests, so a step's cost does not grow with the drawing.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable, Iterator
 
@@ -55,10 +56,12 @@ class Solver:
     def __init__(self, host: Host, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
                  floating: bool = False, cache: SystemCache | None = None,
-                 planar: bool = True):
+                 strict: bool = True):
         self.host, self.change, self.rng = host, change, rng
         self.cache = SystemCache() if cache is None else cache
-        self.planar = planar          # False: skip the crossing tests (a figure's last resort)
+        # False: only directions and positive lengths are kept; no class ranges, fixed
+        # lengths, tiles or crossing tests (the last resort of a figure, see place_side).
+        self.strict = strict
         self.center, self.I, self.J = center, I, J
         # Where new vertices are aimed, for the doomed-round test; a floating component's
         # centre varies per sample, but only by a translation, which moves no length.
@@ -194,7 +197,8 @@ class Solver:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
         shape = (tuple(v in host.prim for v in free),
-                 tuple((idx.get(v, -1), idx.get(w, -1), d, t.lengths[lab][2],
+                 tuple((idx.get(v, -1), idx.get(w, -1), d,
+                        t.lengths[lab][2] if self.strict else None,
                         lab in host.border_labels) for v, i, w, j, d, lab in edges))
         fact = self.cache.get(shape)
         if fact is None:
@@ -211,6 +215,8 @@ class Solver:
         c = scale[nF2:] * (Mp[nF2:] @ b)
         # A system with one solution gives the same sample every time: one try is enough.
         self.unique = fact.unique
+        if not self.strict:
+            return edges, A, b, scale, Mp
         tol = 1e-7 * t.unit
         for e in np.flatnonzero(fixed_rows):
             lo, hi, _, _ = t.lengths[edges[e][5]]
@@ -319,14 +325,14 @@ class Solver:
         x = target + scale * (Mp @ (b - A @ target))
         nF = len(free)
         s = x[2 * nF:]
-        if rd.tiles:
-            x = self._snap_tiles(x, nF, rd.tiles, A, b)
+        if rd.tiles and self.strict:
+            x = self._snap_tiles(x, nF, rd, A, b)
             if x is None:
                 self._fail(Rejection.TILES)
                 return None
             s = x[2 * nF:]
         tol = 1e-7 * t.unit
-        if not np.all((s > tol) & (rd.lo - tol <= s) & (s <= rd.hi + tol)):
+        if not np.all((s > tol) & (((rd.lo - tol <= s) & (s <= rd.hi + tol)) | (not self.strict))):
             self._fail(Rejection.EDGE_LENGTH)
             return None
         pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
@@ -337,15 +343,20 @@ class Solver:
                                          if self.prim(v) not in self.host.on_border):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
-        if self.planar and not self._planar(pos, edges):
+        if self.strict and not self._planar(pos, edges):
             return None
         return pos
 
-    def _snap_tiles(self, x, nF, tiles, A, b):
-        """Round tiled lengths to whole multiples and solve again with them pinned."""
+    def _snap_tiles(self, x, nF, rd, A, b):
+        """Round tiled lengths to whole multiples and solve again with them pinned. The
+        multiple is the nearest one inside the edge's class when there is one (rounding 1.3
+        tiles down to 1 would fall below a class whose minimum is 1.1 tiles)."""
         rows, vals = [], []
-        for e, tile in tiles:
+        for e, tile in rd.tiles:
             k = max(1, round(float(x[2 * nF + e]) / tile))
+            k_lo, k_hi = math.ceil(rd.lo[e] / tile - 1e-9), math.floor(rd.hi[e] / tile + 1e-9)
+            if max(1, k_lo) <= k_hi:
+                k = min(max(k, k_lo), k_hi)
             row = np.zeros(A.shape[1])
             row[2 * nF + e] = 1.0
             rows.append(row)
@@ -506,19 +517,21 @@ def _dist(p: Point, q: Point) -> float:
 
 
 
+
 def place_side(host: Host, side, rng: np.random.Generator,
                tries: int = 4) -> tuple[list[dict[int, Point]], bool]:
     """Positions for the vertices of an angle graph on its own (a rule side, say, drawn by
     `ggc report`), one dict per connected component (`side.components()` order), each placed
     around the origin by the same solver as a generation step: every edge has its label's
-    direction and a length its class allows. Components are placed apart (aimed at one spot
-    they would almost always cross); how to arrange them is the caller's choice. Open
-    half-edges stay open. The flag says whether the placement is planar: a component for
-    which `tries` rounds of samples find no crossing-free placement is placed without the
-    crossing tests. `host` must be empty; it is left unchanged."""
+    direction and a length its class allows, and no edges cross. Components are placed apart
+    (aimed at one spot they would almost always cross); how to arrange them is the caller's
+    choice. Open half-edges stay open. The flag says whether every test held: a component
+    for which `tries` rounds of samples find no placement is placed keeping only the
+    directions and positive lengths (no class ranges, fixed lengths, tiles or crossings). `host` must
+    be empty; it is left unchanged. ValueError when not even that is possible."""
     from .rewrite import Change
     assert len(host) == 0, "place_side draws on an empty host"
-    out, planar = [], True
+    out, strict = [], True
     for comp in side.components():
         keep = set(comp)
         new = tuple((v, side.vertices[v]) for v in comp)
@@ -530,12 +543,12 @@ def place_side(host: Host, side, rng: np.random.Generator,
         pos = None
         for k in range(tries + 1):
             solver = Solver(host, change, rng, lambda: (0.0, 0.0), floating=True,
-                            planar=k < tries)
+                            strict=k < tries)
             pos = next((p.positions for p in solver.placements()), None)
             if pos is not None:
                 break
-        if pos is None:       # no sample meets the length classes (an over-constrained side)
-            raise ValueError("no placement meets the edge classes")
-        planar = planar and k < tries
+        if pos is None:
+            raise ValueError("no placement keeps the edge directions")
+        strict = strict and k < tries
         out.append(pos)
-    return out, planar
+    return out, strict

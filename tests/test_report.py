@@ -88,6 +88,19 @@ def test_report_page_structure(path, tmp_path):
     assert 'id="example"' in html and "data:image/svg+xml;base64," in html
 
 
+@pytest.mark.parametrize("name", ["flowers", "village"])
+def test_report_of_an_illustration(name, tmp_path):
+    # Framed scenes: every rule is drawn; a gallery the runtime cannot grow is reported.
+    out = tmp_path / "r.html"
+    assert ggc(["report", str(CORPUS.parent / "illustrations" / f"{name}.gg"), "-o", str(out),
+                "--gallery", "1", "--steps", "30"]) == 0
+    html = out.read_text()
+    n = int(re.search(r"<h2>Rules \((\d+)\)</h2>", html).group(1))
+    _check_page(html, n)
+    assert "(no placement found)" not in html
+    assert html.count('alt="seed ') == 1 or "could not grow drawings" in html
+
+
 def test_report_of_a_rule_file_names_its_lines(tmp_path):
     ggr = tmp_path / "square.ggr"
     assert ggc(["compile", str(ROOT / "examples" / "square-hollow.gg"), "-o", str(ggr)]) == 0
