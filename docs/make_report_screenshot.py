@@ -26,7 +26,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         page = Path(tmp) / "castle.html"
         subprocess.run([sys.executable, "-m", "report.ggc", "report",
-                        str(ROOT / "examples" / "castle.gg"), "-o", str(page),
+                        "examples/castle.gg", "-o", str(page),
                         "--gallery", "3", "--no-times"], check=True, cwd=ROOT)
         subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu",
                         "--hide-scrollbars", f"--user-data-dir={tmp}/profile",
