@@ -74,6 +74,10 @@ def load_subject(path: str) -> Subject:
                     "give an example (.gg, .svg) or a rule file (.ggr)")
     seconds = time.perf_counter() - t0
     grammar = parse_ggr(text, name if suffix != ".ggr" else str(p))
+    if grammar.is_free:
+        raise error(f"{p.name} holds hand-written productions; the report draws DPO rule "
+                    "files (compiled from an example) only", Span(str(p)),
+                    f"grow drawings from it with 'ggrun {p.name}'")
     if suffix == ".ggr":
         example = _named_example(grammar, p)
         verdict = _recorded_verdict(grammar)

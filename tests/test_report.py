@@ -145,6 +145,11 @@ def test_report_rejects_bad_options(args, message, tmp_path, capsys):
     assert code == 2 and message in capsys.readouterr().err
 
 
+def test_report_refuses_hand_written_productions(capsys):
+    assert ggc(["report", str(ROOT / "examples" / "koch.ggr"), "-o", "/dev/null"]) == 2
+    assert "hand-written productions" in capsys.readouterr().err
+
+
 def test_report_rejects_unknown_input(tmp_path, capsys):
     f = tmp_path / "x.txt"
     f.write_text("hello")
