@@ -19,7 +19,7 @@ from grammar_lang.fileio import atomic_write
 
 from .drawing import DEdge, Drawing, DVertex
 from .free_host import FreeHost
-from .svg_out import FILL_PALETTE, MARGIN, SCREEN, STROKE_WIDTH, _decorations, _Fmt, _marker, \
+from .svg_out import FILL_PALETTE, MARGIN, SCREEN, STROKE_WIDTH, _Fmt, _marker, decorations, \
     _style_for
 
 PAINT = ("fill", "stroke", "width", "opacity", "marker", "size", "d")
@@ -48,7 +48,7 @@ def render_free_svg(host: FreeHost, header) -> str:
            f"  <title>{html.escape(header.source or 'drawing')}: {host.counts['vertex']} "
            f"vertices, {host.counts['edge']} edges, {host.counts['face']} faces</title>",
            '  <g transform="scale(1,-1)" stroke-linecap="round" stroke-linejoin="round">']
-    decos = {kind: _decorations(header, kind) for kind in ("face", "edge", "vertex")}
+    decos = {kind: decorations(header, kind) for kind in ("face", "edge", "vertex")}
     # A declared default yields to the label's decoration; what was set on an element wins.
     paint_defaults = {kind: {k: v for k, v in host.defaults[kind].items() if k in PAINT}
                       for kind in decos}
