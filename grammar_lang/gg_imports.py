@@ -73,20 +73,24 @@ def _find(stmt: A.Import, unit: Unit) -> tuple[Path, str]:
     '/', a leading '.' or the .gg suffix is a path relative to the importing file."""
     name = stmt.target
     explicit = name.startswith((".", "/")) or name.endswith(".gg") or "/" in name
-    if name and not explicit:
+    if name and not explicit and len(name) < 200:
         try:
             lib = resources.files("ggstdlib") / f"{name}.gg"
             if lib.is_file():
                 return Path(str(lib)), lib.read_text(encoding="utf-8")
         except (ModuleNotFoundError, OSError, ValueError):
             pass
-    candidates: list[Path] = []
     local = unit.base / name
+    # Only a .gg file is a module: importing any other file must not show a line of it.
     if name and local.name:
-        candidates = [local] if local.suffix == ".gg" else [local.with_name(local.name + ".gg"),
-                                                              local]
-    for cand in candidates:
-        if cand.is_file():
+        cand = local if local.suffix == ".gg" else local.with_name(local.name + ".gg")
+        try:
+            found = cand.is_file()
+        except (OSError, ValueError) as exc:     # a name too long for the file system
+            raise error(f"cannot import '{name[:60]}': {getattr(exc, 'strerror', None) or exc}",
+                        stmt.span, "import a module by a shorter name or path",
+                        source=unit.text) from None
+        if found:
             return cand, read_text(cand)
     modules = stdlib_modules()
     hint = did_you_mean(name, modules) or (

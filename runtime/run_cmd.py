@@ -23,7 +23,7 @@ DEFAULT_STEPS = 200
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--steps", type=int, default=DEFAULT_STEPS, metavar="N",
                    help=f"rule applications per drawing (default {DEFAULT_STEPS})")
-    p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
+    p.add_argument("--seed", type=_seed, default=0, metavar="S", help="random seed (default 0)")
     p.add_argument("--out", metavar="PATH",
                    help="output file, .svg, .json or .graphml by extension "
                         "(default: FILE's name + .svg)")
@@ -44,6 +44,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="size of the frame a framed example's drawing fills, in drawing units "
                         "(W×H or WxH; default: the example's own frame)")
     p.add_argument("--quiet", action="store_true", help="no progress display or summary")
+
+
+def _seed(text: str) -> int:
+    """A seed numpy takes: a whole number from 0 to 2**63 - 1 (argparse reports the error)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not a whole number") from None
+    if not 0 <= value < 2 ** 63:
+        raise argparse.ArgumentTypeError(f"{text[:40]} is out of range (0 to 2**63 - 1)")
+    return value
 
 
 @dataclass(frozen=True)
