@@ -4,15 +4,20 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import multiprocessing
 import sys
+import threading
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from grammar_lang.blas import pin_blas_threads
+from grammar_lang.cli_support import EXIT_INTERRUPTED
 from grammar_lang.diagnostics import Span, error
 from grammar_lang.rules import Grammar
+
+from . import interrupt
 
 if TYPE_CHECKING:
     from .generate import Summary
@@ -143,8 +148,11 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
     return w, h
 
 
-def run_job(job: Job, progress=None) -> Summary:
-    """Generate one drawing and write it; runs in a worker process for --jobs."""
+def run_job(job: Job, progress=None) -> Summary | None:
+    """Generate one drawing and write it; runs in a worker process for --jobs. After Ctrl-C a
+    job still to start does nothing (None), and a running one writes what it has."""
+    if interrupt.requested():
+        return None
     if job.grammar.is_free:
         return _run_free(job, progress)
     from .costs import parse_cost       # numpy and the engine load only when a run starts,
@@ -153,7 +161,7 @@ def run_job(job: Job, progress=None) -> Summary:
                     parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
                     extent=job.extent)
-    summary = engine.run(job.steps, progress)
+    summary = engine.run(job.steps, progress, stop=interrupt.requested)
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
     write_drawing(drawing, job.grammar, job.out)
@@ -212,22 +220,37 @@ def run_command(args: argparse.Namespace) -> int:
                 _parse_limits(args.limit), both, path, Path(args.file).name, extent)
             for k, path in enumerate(output_paths(out, args.count))]
     show = not args.quiet
-    summaries: list[Summary]
-    if args.jobs > 1 and len(jobs) > 1:
-        with ProcessPoolExecutor(max_workers=args.jobs, initializer=pin_blas_threads) as pool:
-            summaries = []
-            for job, s in zip(jobs, pool.map(run_job, jobs)):
-                summaries.append(s)
+    parallel = args.jobs > 1 and len(jobs) > 1
+    stop = multiprocessing.Event() if parallel else threading.Event()
+    done: list[tuple[Job, Summary]] = []
+    with interrupt.catching(stop):
+        if parallel:
+            with ProcessPoolExecutor(max_workers=args.jobs, initializer=_init_worker,
+                                     initargs=(stop,)) as pool:
+                for job, s in zip(jobs, pool.map(run_job, jobs)):
+                    if s is not None:
+                        done.append((job, s))
+                        if show:
+                            _report(job, s)
+        else:
+            for job in jobs:
+                s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
+                if s is None:
+                    break
+                done.append((job, s))
                 if show:
                     _report(job, s)
-    else:
-        summaries = []
-        for job in jobs:
-            s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
-            summaries.append(s)
-            if show:
-                _report(job, s)
-    return 0 if all(s.vertices > 0 or args.steps == 0 for s in summaries) else 1
+    if stop.is_set():
+        sys.stderr.write(f"interrupted: wrote the last valid drawing of {len(done)} of "
+                         f"{len(jobs)} runs" + (f" ({', '.join(j.out for j, _ in done)})"
+                                                if done else "") + "\n")
+        return EXIT_INTERRUPTED
+    return 0 if all(s.vertices > 0 or args.steps == 0 for _, s in done) else 1
+
+
+def _init_worker(stop) -> None:
+    pin_blas_threads()
+    interrupt.worker_init(stop)
 
 
 def _run_with_progress(job: Job) -> Summary:
