@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from grammar_lang.blas import pin_blas_threads
-from grammar_lang.cli_support import EXIT_INTERRUPTED
+from grammar_lang.cli_support import EXIT_FAILED, EXIT_INTERRUPTED
 from grammar_lang.diagnostics import Span, error
 from grammar_lang.rules import Grammar
 
@@ -245,7 +245,14 @@ def run_command(args: argparse.Namespace) -> int:
                          f"{len(jobs)} runs" + (f" ({', '.join(j.out for j, _ in done)})"
                                                 if done else "") + "\n")
         return EXIT_INTERRUPTED
-    return 0 if all(s.vertices > 0 or args.steps == 0 for _, s in done) else 1
+    empty = [(j, s) for j, s in done if s.vertices == 0 and args.steps > 0]
+    hint = ("check --cost and --limit: a size:0 cost or a --limit of 0 steps keeps the "
+            "drawing empty" if args.cost or args.limit else
+            "the grammar draws nothing from an empty drawing; see its starter rules")
+    for job, s in empty:
+        sys.stderr.write(f"{job.out}: error: the drawing is empty ({s.stop}); wrote it anyway\n"
+                         f"  hint: {hint}\n")
+    return EXIT_FAILED if empty else 0
 
 
 def _init_worker(stop) -> None:
