@@ -10,6 +10,7 @@ go on. The defaults keep every accepted input well under 30 s and 1 GB.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 
 from .diagnostics import Span, UserError, error
@@ -36,14 +37,18 @@ class InputLimit:
                         f"(default {self.default:,})")
         return value
 
+    def message(self, count: int, what: str | None = None) -> str:
+        return (f"the input is over the {self.name} limit: {count:,} {what or self.doc}, "
+                f"at most {self.value():,} allowed")
+
+    def hint(self) -> str:
+        return (f"this limit guards memory and time; to raise it, set {self.env}=N in the "
+                "environment (see docs/limits.md)")
+
     def exceeded(self, count: int, span: Span | None, source: str | None = None,
                  what: str | None = None) -> UserError:
         """The diagnostic for `count` (or more) of what this limit counts."""
-        thing = what or self.doc
-        return error(f"the input is over the {self.name} limit: {count:,} {thing}, "
-                     f"at most {self.value():,} allowed", span,
-                     f"this limit guards memory and time; to raise it, set "
-                     f"{self.env}=N in the environment (see docs/limits.md)", source=source)
+        return error(self.message(count, what), span, self.hint(), source=source)
 
     def check(self, count: int, span: Span | None, source: str | None = None,
               what: str | None = None) -> None:
@@ -52,11 +57,29 @@ class InputLimit:
 
 
 BYTES = InputLimit("bytes", "GG_MAX_BYTES", 4_000_000, "bytes")
-# Statements of a .gg file, elements of an SVG file, entries of a JSON array, lines of a .ggr.
-ELEMENTS = InputLimit("elements", "GG_MAX_ELEMENTS", 50_000, "elements")
-# Numbers in one .gg file or SVG attribute: a cheap count made before anything is parsed.
-NUMBERS = InputLimit("numbers", "GG_MAX_NUMBERS", 100_000, "numbers")
-# Points of one example (every polygon, line and path point) or vertices of one drawing.
-POINTS = InputLimit("points", "GG_MAX_POINTS", 20_000, "points")
+# Words, numbers and symbols of one .gg or .ggr file, counted before it is parsed (the parser
+# takes about 0.1 ms and 1 kB per token). Compiled grammars have a few thousand.
+TOKENS = InputLimit("tokens", "GG_MAX_TOKENS", 100_000, "tokens (words, numbers, symbols)")
+# Elements of an SVG file; entries of a JSON array.
+ELEMENTS = InputLimit("elements", "GG_MAX_ELEMENTS", 10_000, "elements")
+# Points of one example (every polygon, line and path point, every JSON vertex) or vertices of
+# one drawing; also the coordinate pairs of one SVG attribute.
+POINTS = InputLimit("points", "GG_MAX_POINTS", 10_000, "points")
 
-ALL = (BYTES, ELEMENTS, NUMBERS, POINTS)
+ALL = (BYTES, TOKENS, ELEMENTS, POINTS)
+
+_TOKEN = re.compile(r"[^\s(){}\[\],;:=]+|[(){}\[\],;:=]")
+
+
+def check_tokens(text: str, path: str) -> None:
+    """Refuse a text with more tokens than `TOKENS` allows, at the first token over, before
+    a parser builds anything from it. (A rough count: a quoted string may count as several.)"""
+    limit = TOKENS.value()
+    if len(text) <= limit:      # a token is at least one character
+        return
+    for count, m in enumerate(_TOKEN.finditer(text), 1):
+        if count > limit:
+            line = text.count("\n", 0, m.start()) + 1
+            col = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
+            raise TOKENS.exceeded(count, Span(path, line, col), text,
+                                  what="tokens (words, numbers, symbols) so far")
