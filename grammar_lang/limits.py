@@ -66,7 +66,10 @@ ELEMENTS = InputLimit("elements", "GG_MAX_ELEMENTS", 10_000, "elements")
 # one drawing; also the coordinate pairs of one SVG attribute.
 POINTS = InputLimit("points", "GG_MAX_POINTS", 10_000, "points")
 
-ALL = (BYTES, TOKENS, ELEMENTS, POINTS)
+# Vertices a generated drawing may reach: a run stops there, as memory grows with the drawing.
+DRAWING = InputLimit("drawing", "GG_MAX_DRAWING", 500_000, "vertices in the drawing")
+
+ALL = (BYTES, TOKENS, ELEMENTS, POINTS, DRAWING)
 
 _TOKEN = re.compile(r"[^\s(){}\[\],;:=]+|[(){}\[\],;:=]")
 

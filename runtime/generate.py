@@ -17,6 +17,7 @@ from typing import Callable
 
 import numpy as np
 
+from grammar_lang import limits
 from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
@@ -288,9 +289,14 @@ class Engine:
         s = Summary()
         t0 = time.perf_counter()
         stall = 0
+        most = limits.DRAWING.value()
         while s.applied < steps:
             if stop is not None and stop():
                 s.stop = INTERRUPTED
+                break
+            if len(self.host) >= most:
+                s.stop = (f"the drawing reached the vertex limit ({most:,}); set "
+                          f"{limits.DRAWING.env}=N to raise it")
                 break
             out = self.step()
             if out.reason == Rejection.TERMINAL:
