@@ -208,12 +208,12 @@ def signatures(work: Path) -> list[tuple[str, callable, list[str], str | None]]:
                                           + '"/></svg>')], None)]
     for k, text in enumerate(bad_drawings):
         out.append(("signature", ggrun, ["check", g, w(f"bad{k}.json", text)], None))
-    for line in ('decorate edge * stroke="red\\" onmouseover=\\"alert(1)"',
+    for k, line in enumerate(('decorate edge * stroke="red\\" onmouseover=\\"alert(1)"',
                  'decorate vertex * fill="red\\"/><script>alert(1)</script>"',
-                 'decorate face * opacity="x"', "unit 1e-320"):
+                 'decorate face * opacity="x"', "unit 1e-320")):
         text = base.replace("\nunit ", "\n" + line + "\nunit ", 1) if line.startswith("decorate") \
             else base.replace("\nunit ", "\nunit 1e-320\n#", 1)
-        out.append(("signature", ggrun, [w("sig.ggr", text), "--out", str(work / "o.svg")], None))
+        out.append(("signature", ggrun, [w(f"sig{k}.ggr", text), "--out", str(work / "o.svg")], None))
     return out
 
 
@@ -260,10 +260,13 @@ def main() -> int:
     work = Path(tempfile.mkdtemp(prefix="gg-fuzz-bench-"))
     rng = random.Random(args.seed)
     fuzzer = Fuzzer(work, rng)
-    cases = signatures(work) + [fuzzer.case() for _ in range(args.n)]
+    sigs = signatures(work)
+    # Each case writes its input files when made, so it is made just before it runs.
+    cases = (*sigs, *(None for _ in range(args.n)))
     counts: dict[str, Counter] = {}
     failures, slowest, t0 = [], (0.0, ""), time.perf_counter()
     for case in cases:
+        case = case or fuzzer.case()
         start = time.perf_counter()
         outcome, detail = run_case(case, args.timeout)
         took = time.perf_counter() - start
@@ -273,7 +276,7 @@ def main() -> int:
         if outcome in ("internal error", "hang/timeout"):
             failures.append((case, detail))
     shutil.rmtree(work, ignore_errors=True)
-    print(f"{len(cases)} cases ({args.n} random, seed {args.seed}, {len(cases) - args.n} "
+    print(f"{len(cases)} cases ({args.n} random, seed {args.seed}, {len(sigs)} "
           f"signatures) in {time.perf_counter() - t0:.0f} s; slowest {slowest[0]:.1f} s "
           f"({slowest[1]}); peak memory {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024} MB\n")
     print(f"| {'input':<14} | " + " | ".join(f"{o:>19}" for o in OUTCOMES) + " |")
