@@ -208,9 +208,10 @@ def signatures(work: Path) -> list[tuple[str, callable, list[str], str | None]]:
                                           + '"/></svg>')], None)]
     for k, text in enumerate(bad_drawings):
         out.append(("signature", ggrun, ["check", g, w(f"bad{k}.json", text)], None))
-    for k, line in enumerate(('decorate edge * stroke="red\\" onmouseover=\\"alert(1)"',
-                 'decorate vertex * fill="red\\"/><script>alert(1)</script>"',
-                 'decorate face * opacity="x"', "unit 1e-320")):
+    lines = ('decorate edge * stroke="red\\" onmouseover=\\"alert(1)"',
+             'decorate vertex * fill="red\\"/><script>alert(1)</script>"',
+             'decorate face * opacity="x"', "unit 1e-320")
+    for k, line in enumerate(lines):
         text = base.replace("\nunit ", "\n" + line + "\nunit ", 1) if line.startswith("decorate") \
             else base.replace("\nunit ", "\nunit 1e-320\n#", 1)
         out.append(("signature", ggrun, [w(f"sig{k}.ggr", text), "--out", str(work / "o.svg")], None))

@@ -73,7 +73,7 @@ def _find(stmt: A.Import, unit: Unit) -> tuple[Path, str]:
     '/', a leading '.' or the .gg suffix is a path relative to the importing file."""
     name = stmt.target
     explicit = name.startswith((".", "/")) or name.endswith(".gg") or "/" in name
-    if name and not explicit and len(name) < 200:
+    if name and not explicit:
         try:
             lib = resources.files("ggstdlib") / f"{name}.gg"
             if lib.is_file():
