@@ -16,6 +16,7 @@ import argparse
 import contextlib
 import io
 import json
+import os
 import random
 import re
 import resource
@@ -259,6 +260,7 @@ def main() -> int:
     ap.add_argument("--show", type=int, default=5, help="failures to print")
     args = ap.parse_args()
     work = Path(tempfile.mkdtemp(prefix="gg-fuzz-bench-"))
+    os.chdir(work)          # REPL scripts and default output paths write relative files
     rng = random.Random(args.seed)
     fuzzer = Fuzzer(work, rng)
     sigs = signatures(work)
