@@ -59,7 +59,7 @@ OPTIONS = {
     "--direction": ["both", "forward", "sideways"],
     "--count": ["1", "2", "0", "-3"],
     "--jobs": ["1", "0", "-1"],
-    "--out": ["o.svg", "o.json", "o.txt", "sub/o.svg", "", "/dev/null/x.svg"],
+    "--out": ["o.svg", "o.json", "o.graphml", "o.txt", "sub/o.svg", "", "/dev/null/x.svg"],
 }
 REPL = ["rules", "primitives", "matches s0", "matches r0 --backward", "apply s0", "apply r0 1",
         "step", "step 5", "step -1", "run 10", "run 1e9", "undo", "undo all", "redo", "redo 3",

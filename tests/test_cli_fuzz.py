@@ -103,7 +103,7 @@ OPTION_VALUES = {
     "--cost": ["none", "size:0", "size:1:2", "density:nan", "label:x:2", "bogus", "label"],
     "--temperature": ["0", "-1", "nan", "inf"], "--limit": ["0=0", "x", "0=-1", "1=2=3"],
     "--direction": ["both", "forward", "sideways"], "--count": ["1", "2", "0"],
-    "--jobs": ["1", "0"], "--out": ["o.svg", "o.json", "o.txt", "/dev/null/x.svg"],
+    "--jobs": ["1", "0"], "--out": ["o.svg", "o.json", "o.graphml", "o.txt", "/dev/null/x.svg"],
 }
 
 
