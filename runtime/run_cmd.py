@@ -173,7 +173,7 @@ def _run_free(job: Job, progress=None) -> Summary:
     from .free_engine import FreeEngine
     from .free_svg import free_drawing, write_free_svg
     engine = FreeEngine(job.grammar, job.seed, dict(job.limits))
-    summary = engine.run(job.steps, progress)
+    summary = engine.run(job.steps, progress, stop=interrupt.requested)
     if job.out.lower().endswith(".svg"):
         write_free_svg(engine.host, job.grammar.header, job.out)
     else:       # .json and .graphml, as for rules
