@@ -91,11 +91,16 @@ def components(n: int, edges: Sequence[Edge]) -> list[list[int]]:
 
 def split(verts: Sequence[int], edges: Sequence[Edge]) -> list[Graph]:
     """The connected components of a complete (boundary-free) graph, each renumbered from 0."""
-    out = []
-    for comp in components(len(verts), edges):
-        idx = {v: k for k, v in enumerate(comp)}
-        es = tuple(sorted((idx[v], i, idx[w], j) for v, i, w, j in edges if v in idx))
-        out.append(Graph(tuple(verts[v] for v in comp), es, ()))
-    return out
+    comps = components(len(verts), edges)
+    where: dict[int, tuple[int, int]] = {}      # vertex → (its component, its new number)
+    for c, comp in enumerate(comps):
+        for k, v in enumerate(comp):
+            where[v] = (c, k)
+    local: list[list[Edge]] = [[] for _ in comps]   # each edge filed once: linear, not n × m
+    for v, i, w, j in edges:
+        c, a = where[v]
+        local[c].append((a, i, where[w][1], j))
+    return [Graph(tuple(verts[v] for v in comp), tuple(sorted(es)), ())
+            for comp, es in zip(comps, local)]
 
 

@@ -31,7 +31,8 @@ def build_parser(more: Callable | None = None) -> ArgumentParser:
     p.add_argument("-o", "--output", metavar="OUT.ggr",
                    help="where to write the rules (default: beside the example)")
     p.add_argument("--force", action="store_true",
-                   help="overwrite a .ggr file even if it was edited by hand")
+                   help="overwrite a .ggr file even if it was edited by hand, and a --report "
+                        "file that ggc did not write")
     p.add_argument("--report", metavar="FILE.json", help="also write the summary as JSON")
     common_flags(p)
 

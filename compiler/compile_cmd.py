@@ -9,8 +9,8 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
-from grammar_lang.diagnostics import Span, error
-from grammar_lang.fileio import atomic_write
+from grammar_lang.diagnostics import Span, UserError, error
+from grammar_lang.fileio import atomic_write, read_text
 
 from .infer import CompileResult, Report, compile_example
 
@@ -27,6 +27,22 @@ def _progress_bar(err: Console, title: str):
     return bar, task
 
 
+REPORT_FORMAT = "ggc-report/1"
+
+
+def _check_report_target(p: Path) -> None:
+    """Like the rule file, --report replaces only what ggc wrote: an earlier report."""
+    if not (p.exists() or p.is_symlink()):
+        return
+    try:
+        doc = json.loads(read_text(p))
+    except (UserError, ValueError, RecursionError):
+        doc = None
+    if not (isinstance(doc, dict) and doc.get("format") == REPORT_FORMAT):
+        raise error(f"{p} exists and is not a report written by ggc; not overwriting it",
+                    Span(str(p)), "choose another --report path, or pass --force to replace it")
+
+
 def run_compile(args) -> int:
     from grammar_lang.ggr_file import write_ggr
     from grammar_lang.loader import load_example
@@ -40,6 +56,8 @@ def run_compile(args) -> int:
     if args.report and Path(args.report).resolve() == target.resolve():
         raise error("the report and the rule file would be the same file", Span(args.report),
                     "give --report a .json path")
+    if args.report and not args.force:
+        _check_report_target(Path(args.report))
     bar, task = _progress_bar(err, f"compiling {Path(args.file).name}")
 
     def progress(gen: int, graphs: int, rules: int) -> None:
@@ -53,7 +71,7 @@ def run_compile(args) -> int:
         result = compile_example(example)
     write_ggr(target, result.grammar, force=args.force)
     if args.report:
-        data = result.report.as_dict()
+        data = {"format": REPORT_FORMAT, **result.report.as_dict()}
         data["output"] = str(target)
         atomic_write(Path(args.report), json.dumps(data, indent=2, ensure_ascii=False) + "\n")
     out.print(summary_table(result, str(target)))

@@ -40,6 +40,9 @@ from .matching import Match, Matcher, Piece
 from .occurrence import Host, Pattern, contains
 from .pruning import TurnAnalysis
 
+# Work of the example-starter stage per allowed hierarchy graph (a component of n vertices costs
+# n²): the default 1000 graphs admit components up to 1000 vertices.
+STARTER_WORK_PER_GRAPH = 1000
 SELF_CHECK_PRIMITIVES = 5     # complete graphs this small are verified before claiming "complete"
 SELF_CHECK_GRAPHS = 1500
 HIERARCHY_SHARE = 0.85     # of the time limit; the rest is for the example's starters
@@ -452,7 +455,13 @@ class Inference:
         grammar may never have met a complete graph (or met it only as the holder of a left side
         that reduces it through a vertex-less loop), and would otherwise draw nothing."""
         from .verify import Reducer
-        graphs = example_graphs(self.ex)
+        # The stage counts against the graphs limit: big examples are a lot of work.
+        work = self.limits.graphs * STARTER_WORK_PER_GRAPH
+        if self.ex.graph is not None and self.ex.vertex_primitive:
+            parts = split(self.ex.vertex_primitive, example_slots(self.ex))
+            if len(affordable(parts, work)) < len(parts):
+                self.state.limits_hit.add("graphs")
+        graphs = example_graphs(self.ex, work)
         if not graphs:
             return
         on_border = set() if self.frame is None else \
@@ -537,15 +546,29 @@ def example_slots(ex: Example) -> list[tuple[int, int, int, int]]:
     return edges
 
 
-def example_graphs(ex: Example) -> list[Graph]:
+def example_graphs(ex: Example, work: int | None = None) -> list[Graph]:
     """The example drawing's connected components as complete graphs of primitive instances,
-    one per isomorphism class, in canonical order."""
+    one per isomorphism class, in canonical order; with `work`, only those `affordable` picks."""
     if ex.graph is None or not ex.vertex_primitive:
         return []
-    edges = example_slots(ex)
+    parts = split(ex.vertex_primitive, example_slots(ex))
+    if work is not None:
+        parts = affordable(parts, work)
     ring_len = [len(p.ring) for p in ex.primitives]
-    unique = {canonical_key(g, ring_len): g for g in split(ex.vertex_primitive, edges)}
+    unique = {canonical_key(g, ring_len): g for g in parts}
     return [unique[k] for k in sorted(unique)]
+
+
+def affordable(parts: list[Graph], work: int) -> list[Graph]:
+    """The components, smallest first, that fit in `work`: one of n vertices costs n² (its
+    canonical key and match plans take that much)."""
+    kept, spent = [], 0
+    for g in sorted(parts, key=lambda g: len(g.verts)):
+        spent += len(g.verts) ** 2
+        if spent > work:
+            break
+        kept.append(g)
+    return kept
 
 
 def compile_example(example: Example, progress: Progress | None = None) -> CompileResult:

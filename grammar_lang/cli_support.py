@@ -10,6 +10,7 @@ from . import __version__
 from .diagnostics import UserError
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+EXIT_INTERNAL, EXIT_INTERRUPTED = 70, 130
 
 
 class ArgumentParser(argparse.ArgumentParser):
@@ -45,7 +46,7 @@ def run(main: Callable[[Sequence[str]], int], argv: Sequence[str] | None) -> int
         return EXIT_USAGE
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
-        return 130
+        return EXIT_INTERRUPTED
     except BrokenPipeError:
         return EXIT_OK
     except RecursionError as exc:  # deeply nested input; still the user's input, not our bug
@@ -58,4 +59,4 @@ def run(main: Callable[[Sequence[str]], int], argv: Sequence[str] | None) -> int
             raise
         sys.stderr.write(f"internal error: {type(exc).__name__}: {exc}\n"
                          "  hint: this is a bug in the tool; rerun with --debug and report it\n")
-        return 70
+        return EXIT_INTERNAL

@@ -10,6 +10,9 @@ import difflib
 from dataclasses import dataclass, field
 
 
+EXCERPT_WIDTH = 120     # characters of a source line shown in an excerpt
+
+
 @dataclass(frozen=True)
 class Span:
     """A place in a source text: 1-based line and column, and how many columns to underline."""
@@ -46,6 +49,12 @@ class Diagnostic:
         text = lines[self.span.line - 1].rstrip("\r").expandtabs(1)
         gutter = f"{self.span.line:>4} | "
         col = max(self.span.column, 1)
+        if len(text) > EXCERPT_WIDTH:
+            # A long line (one huge path or polyline) is shown around the column only.
+            start = max(0, min(col - 1 - EXCERPT_WIDTH // 2, len(text) - EXCERPT_WIDTH))
+            clipped = text[start:start + EXCERPT_WIDTH]
+            text = ("…" if start else "") + clipped + ("…" if start + EXCERPT_WIDTH < len(text) else "")
+            col = col - start + (1 if start else 0)
         width = max(1, min(self.span.length, max(1, len(text) - col + 1)))
         caret = " " * (len(gutter) - 2) + "| " + " " * (col - 1) + "^" * width
         return f"{gutter}{text}\n{caret}"

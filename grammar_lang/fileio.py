@@ -3,23 +3,20 @@
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
 from pathlib import Path
 
+from . import limits
 from .diagnostics import Span, error
 
 
 def read_text(path: str | Path) -> str:
-    """Read a user's file as UTF-8, turning every OS and decoding failure into a diagnostic."""
+    """Read a user's file as UTF-8, turning every OS and decoding failure into a diagnostic.
+    Only regular files are read (a FIFO or a device would block or never end), and only up to
+    the input byte limit."""
     p = Path(path)
-    try:
-        data = p.read_bytes()
-    except FileNotFoundError:
-        raise error(f"no such file: {p}", Span(str(p)), "check the path and the current directory")
-    except IsADirectoryError:
-        raise error(f"{p} is a directory, not a file", Span(str(p)))
-    except OSError as exc:
-        raise error(f"cannot read {p}: {exc.strerror or exc}", Span(str(p)))
+    data = read_bytes(p)
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -30,6 +27,38 @@ def read_text(path: str | Path) -> str:
     if "\x00" in text:
         raise error("the file contains NUL bytes; is it a binary file?", Span(str(p)))
     return text
+
+
+def read_bytes(p: Path) -> bytes:
+    """The bytes of a regular file of at most `limits.BYTES`, checked on the open file."""
+    try:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except FileNotFoundError:
+        raise error(f"no such file: {p}", Span(str(p)), "check the path and the current directory")
+    except IsADirectoryError:
+        raise error(f"{p} is a directory, not a file", Span(str(p)))
+    except (OSError, ValueError) as exc:
+        raise error(f"cannot read {p}: {getattr(exc, 'strerror', None) or exc}", Span(str(p)))
+    try:
+        info = os.fstat(fd)
+        if stat.S_ISDIR(info.st_mode):
+            raise error(f"{p} is a directory, not a file", Span(str(p)))
+        if not stat.S_ISREG(info.st_mode):
+            raise error(f"{p} is not a regular file (a pipe, device or socket)", Span(str(p)),
+                        "give a file saved on disk")
+        limit = limits.BYTES.value()
+        if info.st_size > limit:
+            raise limits.BYTES.exceeded(info.st_size, Span(str(p)))
+        with os.fdopen(fd, "rb", closefd=False) as fh:
+            data = fh.read(limit + 1)
+    except OSError as exc:
+        raise error(f"cannot read {p}: {exc.strerror or exc}", Span(str(p)))
+    finally:
+        os.close(fd)
+    if len(data) > limit:     # the file grew while it was read
+        raise limits.BYTES.exceeded(len(data), Span(str(p)))
+    return data
 
 
 def atomic_write(path: str | Path, text: str | bytes) -> None:
@@ -56,12 +85,15 @@ def atomic_write(path: str | Path, text: str | bytes) -> None:
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, p)
-    except OSError as exc:
+    except BaseException as exc:
+        # Also on Ctrl-C: the old file stays whole and no temporary file is left behind.
         try:
             os.unlink(tmp)
         except OSError:
             pass
-        raise error(f"cannot write {p}: {exc.strerror or exc}", Span(str(p)))
+        if isinstance(exc, OSError):
+            raise error(f"cannot write {p}: {exc.strerror or exc}", Span(str(p))) from None
+        raise
 
 
 def _umask() -> int:

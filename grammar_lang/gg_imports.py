@@ -80,13 +80,17 @@ def _find(stmt: A.Import, unit: Unit) -> tuple[Path, str]:
                 return Path(str(lib)), lib.read_text(encoding="utf-8")
         except (ModuleNotFoundError, OSError, ValueError):
             pass
-    candidates: list[Path] = []
     local = unit.base / name
+    # Only a .gg file is a module: importing any other file must not show a line of it.
     if name and local.name:
-        candidates = [local] if local.suffix == ".gg" else [local.with_name(local.name + ".gg"),
-                                                              local]
-    for cand in candidates:
-        if cand.is_file():
+        cand = local if local.suffix == ".gg" else local.with_name(local.name + ".gg")
+        try:
+            found = cand.is_file()
+        except (OSError, ValueError) as exc:     # a name too long for the file system
+            raise error(f"cannot import '{name[:60]}': {getattr(exc, 'strerror', None) or exc}",
+                        stmt.span, "import a module by a shorter name or path",
+                        source=unit.text) from None
+        if found:
             return cand, read_text(cand)
     modules = stdlib_modules()
     hint = did_you_mean(name, modules) or (

@@ -18,6 +18,7 @@ from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, Unex
 
 from . import gg_ast as A
 from .diagnostics import Span, UserError, did_you_mean, error
+from . import limits
 from .fileio import read_text
 from .source import ExampleSource
 
@@ -369,6 +370,7 @@ class _Build(Transformer):
 def parse_syntax(text: str, path: str | Path = "<text>") -> tuple[A.Stmt, ...]:
     """The statements of one `.gg` text, without resolving imports or names."""
     path = str(path)
+    limits.check_tokens(text, path)
     try:
         tree = _lark().parse(text)
     except UnexpectedInput as exc:

@@ -6,6 +6,7 @@ language doc, validation and "did you mean" hints all come from the same place.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -192,6 +193,9 @@ def check_value(prop: A.Prop, field: Field, palette: dict[str, str], base: Path,
                     ("write a plain number" + (" or use " + ", ".join(allowed) if allowed else ""))
                     , source=source)
     value = v.value * units[v.unit]
+    if not math.isfinite(value):
+        raise error(f"{prop.key} {v.text} is out of range", where,
+                    f"{prop.key} needs a finite number", source=source)
     if field.kind == "int":
         if value != int(value):
             raise error(f"'{prop.key}' needs a whole number, got {v.text}", where,
@@ -222,3 +226,19 @@ def check_block(props: tuple[A.Prop, ...], schema: dict[str, Field], what: str,
                         "remove one of them", source=source)
         out[prop.key] = check_value(prop, schema[prop.key], palette, base, source)
     return out
+
+
+def check_decoration(kind: str, pairs, base: Path, source: str | None) -> dict[str, object]:
+    """A decoration whose values arrive already read (a `.ggr` file's `key=value` pairs,
+    each with the spans of its key and value), checked by the same table as a `.gg` decoration: `.ggr` values are
+    edited by hand, and what they hold goes into SVG."""
+    props = tuple(A.Prop(key, _as_value(value, at), span) for key, value, span, at in pairs)
+    return check_block(props, DECORATIONS[kind], f"{kind} decoration", {}, base, source)
+
+
+def _as_value(value: object, span) -> A.Value:
+    if isinstance(value, bool):
+        return A.Word("yes" if value else "no", "name", span)
+    if isinstance(value, (int, float)):
+        return A.Num(float(value), "", str(value), span)
+    return A.Word(str(value), "string", span)

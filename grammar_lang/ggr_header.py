@@ -3,16 +3,22 @@ options and the labels and attributes of hand-written productions, resolved and 
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from lark import Token, Tree
 
 from . import boundary as bd
 from . import ggr_free
-from .diagnostics import did_you_mean
+from .diagnostics import UserError, did_you_mean
 from .example import EdgeLabel, Primitive
 from .frame import Corner, Frame
+from .gg_schema import check_decoration
 from .ggr_reader import Reader, _Stop
 from .rules import Header
 from .source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
+
+# Coordinates are bounded by ±1e12 and written to 1e-8; a unit outside this breaks arithmetic.
+MIN_UNIT, MAX_UNIT = 1e-6, 1e12
 
 FORMAT_VERSION = 1
 
@@ -89,8 +95,9 @@ class HeaderReader(Reader):
         if "unit" in singles:
             tok = singles["unit"].children[0]
             unit = self._guard(self.number, tok)
-            if unit is not None and unit <= 0:
-                self.fail("the unit must be positive", tok)
+            if unit is not None and not MIN_UNIT <= unit <= MAX_UNIT:
+                self.fail(f"the unit must be from {MIN_UNIT:g} to {MAX_UNIT:g}", tok,
+                          "the unit is a typical edge length (the example's median edge)")
             fields["unit"] = unit if unit is not None else 1.0
         if "options" in singles or "limits" in singles:
             fields["options"] = self._options(singles.get("options"), singles.get("limits"))
@@ -225,17 +232,19 @@ class HeaderReader(Reader):
             what = {"face": "face label", "edge": "edge class", "vertex": "primitive"}[kind]
             raise self.fail(f"unknown {what} '{target}'", target_tok,
                             did_you_mean(target, targets[kind]) or "'*' decorates all of them")
-        props = []
-        seen = set()
+        pairs = []
         for s in rest:
             key = self.name(s.children[0])
-            if key in seen:
-                raise self.fail(f"'{key}' is given twice", s.children[0])
-            seen.add(key)
             if len(s.children) < 2:
                 raise self.fail(f"'{key}' needs a value: {key}=…", s.children[0])
-            props.append((key, self.prop(s.children[1])))
-        return Decoration(kind, target, tuple(props), span=self.span(kind_tok))
+            pairs.append((key, self.prop(s.children[1]), self.span(s.children[0]),
+                          self.span(s.children[1].children[0])))
+        try:   # the .gg schema: what a .ggr decoration holds goes into SVG
+            props = check_decoration(kind, pairs, Path(self.path).parent, self.text)
+        except UserError as exc:
+            first = exc.diagnostics[0]
+            raise self.fail(first.message, first.span, first.hint) from None
+        return Decoration(kind, target, tuple(props.items()), span=self.span(kind_tok))
 
     # -- rules --
 

@@ -19,7 +19,7 @@ from pathlib import Path
 from lark import Lark, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
-from . import ggr_free
+from . import ggr_free, limits
 from .diagnostics import Diagnostic, Span, UserError
 from .fileio import read_text
 from .ggr_header import FORMAT_VERSION, HeaderReader
@@ -42,6 +42,7 @@ def load_ggr(path: str | Path) -> Grammar:
 
 
 def parse_ggr(text: str, path: str = "<ggr>") -> Grammar:
+    limits.check_tokens(text, path)
     # A final newline lets the last statement end like every other; it adds no line.
     source = text if text.endswith("\n") else text + "\n"
     try:

@@ -15,9 +15,10 @@ import numpy as np
 import shapely
 from scipy.sparse import csr_matrix
 
+from . import limits
 from .diagnostics import Diagnostic, Span, UserError, error
 from .planar_faces import compute_faces, winding
-from .planar_noding import NodingError, cluster, node
+from .planar_noding import NodingError, TooManyCrossings, cluster, node
 from .source import DEFAULT_CLASS, ExampleGraph, ExampleSource, ExplicitEdge, Region, Stroke
 
 MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the bounding-box diagonal
@@ -45,8 +46,26 @@ def merge_distance(source: ExampleSource, points: np.ndarray) -> float:
 
 
 def build_planar_graph(source: ExampleSource) -> ExampleGraph:
+    _check_points(source)
     builder = _Builder(source)
     return builder.build()
+
+
+def _check_points(source: ExampleSource) -> None:
+    """The input point limit, checked before noding allocates per-segment arrays; the error
+    points at the shape that goes over it."""
+    limit, total = limits.POINTS.value(), 0
+    for item in source.paint:
+        if isinstance(item, Region):
+            total += sum(len(r) for r in item.rings)
+        elif isinstance(item, Stroke):
+            total += len(item.points)
+        else:
+            total += 2
+        if total > limit:
+            span = item.span or Span(source.path)
+            raise limits.POINTS.exceeded(total, span, source.text if span.file == source.path
+                                         else None, what="points so far")
 
 
 class _Builder:
@@ -115,7 +134,10 @@ class _Builder:
         ends = index[segments[:, :2]]
         self.check_collapse(ends, segments[:, 2], d)
         try:
-            pieces = node(centres, ends, segments[:, 2], d)
+            pieces = node(centres, ends, segments[:, 2], d, limits.POINTS.value())
+        except TooManyCrossings as exc:
+            raise limits.POINTS.exceeded(len(centres) + exc.count, Span(self.source.path),
+                                         what="points with the crossings found so far") from None
         except NodingError:
             raise error("the drawing has near-coincident crossings that cannot be resolved at "
                         f"merge distance {d:g}", Span(self.source.path),

@@ -18,7 +18,14 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 MAX_ROUNDS = 32
+CROSSING_BLOCK = 512     # segments per crossing query: bounds the pairs held at once
 SNAP_ROUNDS = 8
+
+
+class TooManyCrossings(Exception):
+    def __init__(self, count: int):
+        super().__init__(f"{count} crossings")
+        self.count = count
 
 
 class NodingError(Exception):
@@ -67,8 +74,9 @@ def cluster(points: np.ndarray, distance: float) -> tuple[np.ndarray, np.ndarray
 
 
 def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
-         distance: float) -> Pieces:
+         distance: float, max_vertices: int | None = None) -> Pieces:
     """Split segments (pairs of vertex indices) at crossings and near vertices, dedupe overlaps.
+    More crossings than `max_vertices` leaves room for raise `TooManyCrossings`.
 
     `vertices` must already be merged (no two closer than `distance`). The first round snaps
     with the full merge distance; later rounds, which only mop up crossings the bending
@@ -87,7 +95,8 @@ def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
             break
         near = max(distance, exact) if round_ == 0 else exact
         snap = max(distance, exact) if round_ < SNAP_ROUNDS else exact
-        splits, new_points = _find_splits(vertices, ends, near, snap)
+        room = None if max_vertices is None else max(0, max_vertices - len(vertices))
+        splits, new_points = _find_splits(vertices, ends, near, snap, room)
         if not splits:
             return Pieces(vertices, ends, sources, is_input)
         if len(new_points):
@@ -108,7 +117,8 @@ def node(vertices: np.ndarray, ends: np.ndarray, source_ids: np.ndarray,
     return Pieces(vertices, ends, sources, is_input)
 
 
-def _find_splits(vertices: np.ndarray, ends: np.ndarray, near: float, snap: float):
+def _find_splits(vertices: np.ndarray, ends: np.ndarray, near: float, snap: float,
+                 max_crossings: int | None = None):
     """{segment: [vertex ids to route it through]} and new crossing points (ids -1, -2, …).
 
     A vertex within `near` of a segment's interior splits it (T-junctions, overlaps); a
@@ -130,21 +140,9 @@ def _find_splits(vertices: np.ndarray, ends: np.ndarray, near: float, snap: floa
         for v, s in zip(vi[inside].tolist(), si[inside].tolist()):
             splits.setdefault(s, []).append(v)
 
-    i, j = tree.query(lines, predicate="intersects")
-    keep = (i < j) & (ends[i, 0] != ends[j, 0]) & (ends[i, 0] != ends[j, 1]) \
-        & (ends[i, 1] != ends[j, 0]) & (ends[i, 1] != ends[j, 1])
-    i, j = i[keep], j[keep]
+    i, j, crossings = _crossings(lines, tree, ends, a, b, max_crossings)
     new_points: list[np.ndarray] = []
     if len(i):
-        r, s = b[i] - a[i], b[j] - a[j]
-        denom = r[:, 0] * s[:, 1] - r[:, 1] * s[:, 0]
-        qp = a[j] - a[i]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]) / denom
-            u = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / denom
-        proper = np.isfinite(t) & np.isfinite(u) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
-        i, j, t = i[proper], j[proper], t[proper]
-        crossings = a[i] + t[:, None] * r[proper]
         if len(crossings):
             dist, nearest = cKDTree(vertices).query(crossings, distance_upper_bound=snap)
             for k in range(len(crossings)):
@@ -156,6 +154,35 @@ def _find_splits(vertices: np.ndarray, ends: np.ndarray, near: float, snap: floa
                 splits.setdefault(int(i[k]), []).append(target)
                 splits.setdefault(int(j[k]), []).append(target)
     return splits, new_points
+
+
+def _crossings(lines, tree, ends, a, b, most: int | None):
+    """Proper crossings of segments: (first segment, second segment, point) arrays. Queried a
+    block of segments at a time, so that a tangle is refused (`TooManyCrossings`) before the
+    pairs of all segments are held at once."""
+    found_i, found_j, found_p, total = [], [], [], 0
+    for start in range(0, len(lines), CROSSING_BLOCK):
+        i, j = tree.query(lines[start:start + CROSSING_BLOCK], predicate="intersects")
+        i = i + start
+        keep = (i < j) & (ends[i, 0] != ends[j, 0]) & (ends[i, 0] != ends[j, 1]) \
+            & (ends[i, 1] != ends[j, 0]) & (ends[i, 1] != ends[j, 1])
+        i, j = i[keep], j[keep]
+        r, s = b[i] - a[i], b[j] - a[j]
+        denom = r[:, 0] * s[:, 1] - r[:, 1] * s[:, 0]
+        qp = a[j] - a[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]) / denom
+            u = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / denom
+        proper = np.isfinite(t) & np.isfinite(u) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
+        found_i.append(i[proper])
+        found_j.append(j[proper])
+        found_p.append(a[i[proper]] + t[proper][:, None] * r[proper])
+        total += int(proper.sum())
+        if most is not None and total > most:
+            raise TooManyCrossings(total)
+    if not found_i:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 2))
+    return np.concatenate(found_i), np.concatenate(found_j), np.concatenate(found_p)
 
 
 def _split(vertices, ends, sources, splits):

@@ -20,6 +20,7 @@ from defusedxml import DefusedXmlException
 from defusedxml import sax as defused_sax
 
 from .diagnostics import Span, UserError, error
+from . import limits
 from .fileio import read_text
 from .source import DEFAULT_CLASS, EdgeClass, ExampleSource, Region, Stroke
 from .svg_colors import normalize_color
@@ -28,7 +29,6 @@ from .svg_paths import (FLATTEN_HINT, IDENTITY, SvgValueError, apply, parse_leng
 
 SVG_NS = "http://www.w3.org/2000/svg"
 MAX_DEPTH = 256
-MAX_ELEMENTS = 200_000
 
 # Elements that paint nothing we model (definitions, metadata, text): their subtrees are skipped.
 _SKIPPED = {"defs", "symbol", "clipPath", "mask", "marker", "pattern", "linearGradient",
@@ -62,6 +62,7 @@ class _TreeBuilder(xml.sax.ContentHandler):
         self.stack: list[_Node] = []
         self.root: _Node | None = None
         self.count = 0
+        self.max_elements = limits.ELEMENTS.value()
 
     def setDocumentLocator(self, locator):
         self.locator = locator
@@ -76,8 +77,9 @@ class _TreeBuilder(xml.sax.ContentHandler):
         uri, local = name
         line, column = self._position()
         self.count += 1
-        if self.count > MAX_ELEMENTS:
-            raise _Refused(f"the drawing has more than {MAX_ELEMENTS} elements", line, column)
+        if self.count > self.max_elements:
+            raise _Refused(limits.ELEMENTS.message(self.count, "elements so far"), line, column,
+                           limits.ELEMENTS.hint())
         if len(self.stack) >= MAX_DEPTH:
             raise _Refused(f"elements are nested more than {MAX_DEPTH} deep", line, column)
         plain = {k[1]: v for k, v in attrs.items() if k[0] is None}
@@ -97,9 +99,10 @@ class _TreeBuilder(xml.sax.ContentHandler):
 
 
 class _Refused(Exception):
-    def __init__(self, message: str, line: int, column: int):
+    def __init__(self, message: str, line: int, column: int,
+                 hint: str = "this does not look like a hand-drawn example"):
         super().__init__(message)
-        self.message, self.line, self.column = message, line, column
+        self.message, self.line, self.column, self.hint = message, line, column, hint
 
 
 def _parse_xml(text: str, file: str) -> _Node:
@@ -125,7 +128,7 @@ def _parse_xml(text: str, file: str) -> _Node:
         parser.parse(source)
     except _Refused as exc:
         raise error(exc.message, Span(file, exc.line, exc.column), source=text,
-                    hint="this does not look like a hand-drawn example") from None
+                    hint=exc.hint) from None
     except DefusedXmlException as exc:
         offset = text.find("<!ENTITY")
         span = _span_at(file, text, offset) if offset >= 0 else Span(file)
@@ -287,14 +290,14 @@ class _Importer:
         """(subpaths as (points, closed), whether fill applies) or None for unknown elements."""
         if tag == "path":
             try:
-                subpaths = parse_path(node.attrs.get("d", ""))
+                subpaths = parse_path(node.attrs.get("d", ""), limits.POINTS)
             except SvgValueError as exc:
                 raise self.fail(node, f"bad path data: {exc.message}", exc.hint, "d",
                                 exc.offset) from None
             return [(sp.points, sp.closed) for sp in subpaths], True
         if tag in ("polygon", "polyline"):
             try:
-                points = parse_points(node.attrs.get("points", ""))
+                points = parse_points(node.attrs.get("points", ""), limits.POINTS)
             except SvgValueError as exc:
                 raise self.fail(node, f"bad points: {exc.message}", exc.hint, "points",
                                 exc.offset) from None

@@ -42,22 +42,30 @@ def _skip(text: str, i: int) -> int:
     return i
 
 
-def parse_numbers(text: str) -> list[tuple[float, int]]:
-    """Every number in a comma/whitespace separated list, with its offset."""
+def _over(limit, count: int, offset: int) -> SvgValueError:
+    return SvgValueError(limit.message(count, "points in this attribute"), offset, limit.hint())
+
+
+def parse_numbers(text: str, limit=None) -> list[tuple[float, int]]:
+    """Every number in a comma/whitespace separated list, with its offset. `limit` (a
+    `limits.InputLimit` on points) bounds how many pairs are read."""
     out = []
+    most = 2 * limit.value() if limit is not None else None
     i = _skip(text, 0)
     while i < len(text):
         match = _NUMBER.match(text, i)
         if not match:
             raise SvgValueError(f"expected a number, found {text[i]!r}", i)
         out.append((_finite(float(match.group()), i), i))
+        if most is not None and len(out) > most:
+            raise _over(limit, len(out) // 2, i)
         i = _skip(text, match.end())
     return out
 
 
-def parse_points(text: str) -> list[Point]:
+def parse_points(text: str, limit=None) -> list[Point]:
     """The `points` attribute of `<polygon>` and `<polyline>`."""
-    numbers = parse_numbers(text)
+    numbers = parse_numbers(text, limit)
     if len(numbers) % 2:
         raise SvgValueError("odd number of coordinates: the last point has no y",
                             numbers[-1][1])
@@ -74,7 +82,7 @@ class Subpath:
         self.closed = False
 
 
-def parse_path(text: str) -> list[Subpath]:
+def parse_path(text: str, limit=None) -> list[Subpath]:
     """Straight-line path data (M/L/H/V/Z, absolute and relative) → subpaths.
 
     Curves are refused, with the offset of the first curve command, because guessing a
@@ -83,6 +91,7 @@ def parse_path(text: str) -> list[Subpath]:
     subpaths: list[Subpath] = []
     current: Subpath | None = None
     x = y = 0.0
+    most, count = (limit.value() if limit is not None else None), 0
     i = _skip(text, 0)
     command = None
     while i < len(text):
@@ -123,6 +132,7 @@ def parse_path(text: str) -> list[Subpath]:
             x, y = (x + args[0], y + args[1]) if relative else (args[0], args[1])
             current = Subpath((x, y))
             subpaths.append(current)
+            count += 1
             # Further pairs after a moveto are implicit linetos (SVG 1.1 §8.3.2).
             command = "l" if relative else "L"
             continue
@@ -137,6 +147,9 @@ def parse_path(text: str) -> list[Subpath]:
             current = Subpath((x, y) if not subpaths else subpaths[-1].points[0])
             subpaths.append(current)
         current.points.append((x, y))
+        count += 1
+        if most is not None and count > most:
+            raise _over(limit, count, i)
     return subpaths
 
 

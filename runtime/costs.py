@@ -101,6 +101,11 @@ def parse_cost(spec: str | None, label_names, default_size: int) -> Cost:
         from grammar_lang.diagnostics import did_you_mean
         raise error(f"unknown cost '{name}'", None,
                     did_you_mean(name, makers) or "costs: " + ", ".join(sorted(makers)))
+    most = {"none": 0, "size": 1, "density": 1, "label": 2}[name]
+    if len(args) > most:
+        raise error(f"--cost {spec}: '{name}' takes " + (f"at most {most} argument"
+                    + ("s" if most > 1 else "") if most else "no arguments"), None,
+                    "costs: size[:N], density:D, label:NAME[:F], none")
     if name == "density" and not args:
         raise error("cost 'density' needs a target", None, "write e.g. --cost density:0.5")
     if name == "label" and not args:

@@ -11,7 +11,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from grammar_lang.diagnostics import Span, error
+from grammar_lang import limits
 from grammar_lang.fileio import atomic_write, read_text
+from grammar_lang.json_doc import Reader
 
 FORMAT = "gg-drawing/1"
 
@@ -64,23 +66,17 @@ def round_coordinate(x: float) -> float:
 
 
 def parse_drawing(text: str, path: str = "<drawing>") -> Drawing:
-    try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise error(f"not valid JSON: {exc.msg}", Span(path, exc.lineno, exc.colno),
-                    "a drawing is a gg-drawing/1 JSON file written by ggrun", source=text)
+    r = Reader(path, f"{FORMAT} drawing",
+               'vertices are {"id", "x", "y"}; edges are {"u", "v", "left", "right", "class"}')
+    doc = r.parse(text)
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise error(f"not a {FORMAT} drawing", Span(path),
                     f'the top-level object needs "format": "{FORMAT}"')
-    try:
-        vertices = tuple(DVertex(int(v["id"]), float(v["x"]), float(v["y"]))
-                         for v in doc["vertices"])
-        edges = tuple(DEdge(int(e["u"]), int(e["v"]), str(e["left"]), str(e["right"]),
-                            str(e.get("class", "0")), e.get("label"))
-                      for e in doc["edges"])
-    except (KeyError, TypeError, ValueError) as exc:
-        raise error(f"malformed drawing: {type(exc).__name__}: {exc}", Span(path),
-                    'vertices need "id", "x", "y"; edges need "u", "v", "left", "right"')
+    vs = r.array(r.key(doc, "vertices", "the file"), "vertices", limit=limits.POINTS)
+    vertices = tuple(_vertex(r, r.obj(v, f"vertices[{k}]"), f"vertices[{k}]")
+                     for k, v in enumerate(vs))
+    es = r.array(r.key(doc, "edges", "the file"), "edges")
+    edges = tuple(_edge(r, r.obj(e, f"edges[{k}]"), f"edges[{k}]") for k, e in enumerate(es))
     ids = {v.id for v in vertices}
     if len(ids) != len(vertices):
         raise error("two vertices share an id", Span(path))
@@ -89,6 +85,24 @@ def parse_drawing(text: str, path: str = "<drawing>") -> Drawing:
             raise error(f"edge {e.u}-{e.v} names a vertex that does not exist", Span(path))
     meta = {k: v for k, v in doc.items() if k not in ("format", "vertices", "edges")}
     return Drawing(vertices, edges, meta)
+
+
+def _vertex(r: Reader, v: dict, at: str) -> DVertex:
+    return DVertex(r.integer(r.key(v, "id", at), f"{at}.id", -2 ** 62, 2 ** 62),
+                   r.number(r.key(v, "x", at), f"{at}.x"), r.number(r.key(v, "y", at), f"{at}.y"))
+
+
+def _edge(r: Reader, e: dict, at: str) -> DEdge:
+    def end(key: str) -> int:
+        return r.integer(r.key(e, key, at), f"{at}.{key}", -2 ** 62, 2 ** 62)
+
+    def text(key: str) -> str:
+        return r.string(r.key(e, key, at), f"{at}.{key}")
+
+    label = e.get("label")
+    return DEdge(end("u"), end("v"), text("left"), text("right"),
+                 r.string(e.get("class", "0"), f"{at}.class"),
+                 None if label is None else r.string(label, f"{at}.label"))
 
 
 def load_drawing(path: str | Path) -> Drawing:

@@ -123,12 +123,16 @@ class FreeEngine:
     # -- running --
 
     def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
-            per_step: list | None = None) -> Summary:
+            per_step: list | None = None, stop: Callable[[], bool] | None = None) -> Summary:
+        """Up to `steps` steps; `stop()` is asked between steps (Ctrl-C, runtime.interrupt)."""
         s = Summary()
         t0 = time.perf_counter()
         stall = 0
         s.stop = f"reached {steps} steps"
         while s.applied < steps:
+            if stop is not None and stop():
+                s.stop = "interrupted (Ctrl-C)"
+                break
             result = self.step()
             s.proposals += 1
             if result is None:

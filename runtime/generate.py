@@ -17,6 +17,7 @@ from typing import Callable
 
 import numpy as np
 
+from grammar_lang import limits
 from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
@@ -32,6 +33,7 @@ from .schedule import Schedule
 
 # Stop after this many proposals in a row that could not be placed or were refused.
 MAX_STALL = 500
+INTERRUPTED = "interrupted (Ctrl-C)"
 # The level key under which edits outside the rules are counted; no schedule level uses it.
 EDIT_LEVEL = -(2 ** 62)
 
@@ -281,12 +283,21 @@ class Engine:
         return rec
 
     def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
-            every: int = 50) -> Summary:
-        """Apply up to `steps` steps; stops early on a terminal drawing or a stall."""
+            every: int = 50, stop: Callable[[], bool] | None = None) -> Summary:
+        """Apply up to `steps` steps; stops early on a terminal drawing, a stall, or when
+        `stop()` says so (it is asked between steps, so the drawing is always whole)."""
         s = Summary()
         t0 = time.perf_counter()
         stall = 0
+        most = limits.DRAWING.value()
         while s.applied < steps:
+            if stop is not None and stop():
+                s.stop = INTERRUPTED
+                break
+            if len(self.host) >= most:
+                s.stop = (f"the drawing reached the vertex limit ({most:,}); set "
+                          f"{limits.DRAWING.env}=N to raise it")
+                break
             out = self.step()
             if out.reason == Rejection.TERMINAL:
                 s.stop = ("no rule applies to the empty drawing: the grammar has no starter "

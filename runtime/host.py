@@ -96,6 +96,14 @@ class Tables:
                       header.exterior, unit)
 
 
+def grid_cell(t: Tables) -> float:
+    """The grid's cell side: the unit, or a quarter of the longest edge a label allows when
+    that is longer (compiled grammars allow 4 units, so this is their unit), so that no edge
+    fills more than a few cells however the unit and the lengths were edited."""
+    longest = max((hi for _, hi, _, _ in t.lengths if math.isfinite(hi)), default=0.0)
+    return max(t.unit, longest / 4)
+
+
 def unit_vector(degrees: float) -> Point:
     """The direction as a unit vector, exact at multiples of 90° (where sin(pi) would leave
     1e-16 and put the ends of a horizontal edge at different heights)."""
@@ -126,7 +134,7 @@ class Host:
         self.prim_count = np.zeros(len(self.t.rings), dtype=np.int64)   # len(by_prim[p])
         self._where: dict[int, int] = {}
         self.next_id = 0
-        self.grid = Grid(self.t.unit)
+        self.grid = Grid(grid_cell(self.t))
         self.label_count = [0] * len(self.t.label_names)
         self.n_edges = 0
         self.n_open = 0

@@ -4,15 +4,20 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import multiprocessing
 import sys
+import threading
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from grammar_lang.blas import pin_blas_threads
+from grammar_lang.cli_support import EXIT_FAILED, EXIT_INTERRUPTED
 from grammar_lang.diagnostics import Span, error
 from grammar_lang.rules import Grammar
+
+from . import interrupt
 
 if TYPE_CHECKING:
     from .generate import Summary
@@ -23,7 +28,7 @@ DEFAULT_STEPS = 200
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--steps", type=int, default=DEFAULT_STEPS, metavar="N",
                    help=f"rule applications per drawing (default {DEFAULT_STEPS})")
-    p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
+    p.add_argument("--seed", type=_seed, default=0, metavar="S", help="random seed (default 0)")
     p.add_argument("--out", metavar="PATH",
                    help="output file, .svg, .png, .json or .graphml by extension "
                         "(default: FILE's name + .svg)")
@@ -47,6 +52,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="size of the frame a framed example's drawing fills, in drawing units "
                         "(W×H or WxH; default: the example's own frame)")
     p.add_argument("--quiet", action="store_true", help="no progress display or summary")
+
+
+def _seed(text: str) -> int:
+    """A seed numpy takes: a whole number from 0 to 2**63 - 1 (argparse reports the error)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not a whole number") from None
+    if not 0 <= value < 2 ** 63:
+        raise argparse.ArgumentTypeError(f"{text[:40]} is out of range (0 to 2**63 - 1)")
+    return value
 
 
 @dataclass(frozen=True)
@@ -136,8 +152,11 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
     return w, h
 
 
-def run_job(job: Job, progress=None) -> Summary:
-    """Generate one drawing and write it; runs in a worker process for --jobs."""
+def run_job(job: Job, progress=None) -> Summary | None:
+    """Generate one drawing and write it; runs in a worker process for --jobs. After Ctrl-C a
+    job still to start does nothing (None), and a running one writes what it has."""
+    if interrupt.requested():
+        return None
     if job.grammar.is_free:
         return _run_free(job, progress)
     from .costs import parse_cost       # numpy and the engine load only when a run starts,
@@ -146,7 +165,7 @@ def run_job(job: Job, progress=None) -> Summary:
                     parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
                     extent=job.extent)
-    summary = engine.run(job.steps, progress)
+    summary = engine.run(job.steps, progress, stop=interrupt.requested)
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
     write_drawing(drawing, job.grammar, job.out, job.png)
@@ -158,7 +177,7 @@ def _run_free(job: Job, progress=None) -> Summary:
     from .free_engine import FreeEngine
     from .free_svg import free_drawing, write_free_svg
     engine = FreeEngine(job.grammar, job.seed, dict(job.limits))
-    summary = engine.run(job.steps, progress)
+    summary = engine.run(job.steps, progress, stop=interrupt.requested)
     if job.out.lower().endswith(".svg"):
         write_free_svg(engine.host, job.grammar.header, job.out)
     elif job.out.lower().endswith(".png"):
@@ -218,22 +237,44 @@ def run_command(args: argparse.Namespace) -> int:
                 (args.width, args.scale))
             for k, path in enumerate(output_paths(out, args.count))]
     show = not args.quiet
-    summaries: list[Summary]
-    if args.jobs > 1 and len(jobs) > 1:
-        with ProcessPoolExecutor(max_workers=args.jobs, initializer=pin_blas_threads) as pool:
-            summaries = []
-            for job, s in zip(jobs, pool.map(run_job, jobs)):
-                summaries.append(s)
+    parallel = args.jobs > 1 and len(jobs) > 1
+    stop = multiprocessing.Event() if parallel else threading.Event()
+    done: list[tuple[Job, Summary]] = []
+    with interrupt.catching(stop):
+        if parallel:
+            with ProcessPoolExecutor(max_workers=args.jobs, initializer=_init_worker,
+                                     initargs=(stop,)) as pool:
+                for job, s in zip(jobs, pool.map(run_job, jobs)):
+                    if s is not None:
+                        done.append((job, s))
+                        if show:
+                            _report(job, s)
+        else:
+            for job in jobs:
+                s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
+                if s is None:
+                    break
+                done.append((job, s))
                 if show:
                     _report(job, s)
-    else:
-        summaries = []
-        for job in jobs:
-            s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
-            summaries.append(s)
-            if show:
-                _report(job, s)
-    return 0 if all(s.vertices > 0 or args.steps == 0 for s in summaries) else 1
+    if stop.is_set():
+        sys.stderr.write(f"interrupted: wrote the last valid drawing of {len(done)} of "
+                         f"{len(jobs)} runs" + (f" ({', '.join(j.out for j, _ in done)})"
+                                                if done else "") + "\n")
+        return EXIT_INTERRUPTED
+    empty = [(j, s) for j, s in done if s.vertices == 0 and args.steps > 0]
+    hint = ("check --cost and --limit: a size:0 cost or a --limit of 0 steps keeps the "
+            "drawing empty" if args.cost or args.limit else
+            "the grammar draws nothing from an empty drawing; see its starter rules")
+    for job, s in empty:
+        sys.stderr.write(f"{job.out}: error: the drawing is empty ({s.stop}); wrote it anyway\n"
+                         f"  hint: {hint}\n")
+    return EXIT_FAILED if empty else 0
+
+
+def _init_worker(stop) -> None:
+    pin_blas_threads()
+    interrupt.worker_init(stop)
 
 
 def _run_with_progress(job: Job) -> Summary:

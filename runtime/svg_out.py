@@ -38,6 +38,14 @@ MARGIN = 0.05           # of the drawing's larger side
 SCREEN = 800.0          # px along the larger side, for the width/height attributes
 
 
+def element(tag: str, attrs, body: str | None = None) -> str:
+    """An XML element, every attribute value escaped here and nowhere else: no value, from
+    whatever input file, can end its attribute and start another, or start an element.
+    `attrs` is a sequence of (name, value) pairs; a None value leaves the attribute out."""
+    text = "".join(f" {k}={quoteattr(str(v))}" for k, v in attrs if v is not None)
+    return f"<{tag}{text}/>" if body is None else f"<{tag}{text}>{body}</{tag}>"
+
+
 def _hex_colour(label: str) -> bool:
     return len(label) == 7 and label[0] == "#" and all(c in "0123456789abcdefABCDEF" for c in label[1:])
 
@@ -143,9 +151,11 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
     def face_style(label: str) -> tuple[str | None, dict]:
         return face_paint(label, plain, exterior, face_decos)
 
-    head = [f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-            f'viewBox="{" ".join(fmt(x) for x in vb)}" width="{fmt(vb[2] * k)}" '
-            f'height="{fmt(vb[3] * k)}">']
+    svg = element("svg", [("xmlns", "http://www.w3.org/2000/svg"),
+                          ("xmlns:xlink", "http://www.w3.org/1999/xlink"),
+                          ("viewBox", " ".join(fmt(x) for x in vb)), ("width", fmt(vb[2] * k)),
+                          ("height", fmt(vb[3] * k))], "")
+    head = [svg[: -len("</svg>")]]
     title = (ref.name if ref and ref.name else drawing.meta.get("example", "")) or "drawing"
     head.append(f"  <title>{escape(str(title))}: {len(ids)} vertices, {len(drawing.edges)} edges</title>")
     defs: list[str] = []
@@ -185,14 +195,16 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
                 pid = f"pattern{len(patterns)}"
                 patterns[key] = pid
                 w = fmt(unit * key[1])
-                defs.append(f'    <pattern id="{pid}" patternUnits="userSpaceOnUse" width="{w}" '
-                            f'height="{w}"><image xlink:href={quoteattr(href(key[0]))} '
-                            f'width="{w}" height="{w}"/></pattern>')
+                image = element("image", [("xlink:href", href(key[0])), ("width", w),
+                                          ("height", w)])
+                defs.append("    " + element("pattern", [("id", pid),
+                                                         ("patternUnits", "userSpaceOnUse"),
+                                                         ("width", w), ("height", w)], image))
             paint = f"url(#{patterns[key]})"
         d = " ".join("M " + " L ".join(pt(p) for p in ring) + " Z" for ring in rings if len(ring))
-        extra = f' fill-opacity="{fmt(style["opacity"])}"' if "opacity" in style else ""
-        body.append(f'    <path d="{d}" fill="{paint}" fill-rule="evenodd"{extra} '
-                    f'data-label={quoteattr(label)}/>')
+        opacity = fmt(style["opacity"]) if "opacity" in style else None
+        body.append("    " + element("path", [("d", d), ("fill", paint), ("fill-rule", "evenodd"),
+                                              ("fill-opacity", opacity), ("data-label", label)]))
     body.append("  </g>")
 
     # --- edges, one path per class ----------------------------------------------------------
@@ -210,10 +222,12 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
         colour = style["stroke"]
         width = float(style.get("width", STROKE_WIDTH * unit))
         d = " ".join(f"M {pt(xy[ends[i, 0]])} L {pt(xy[ends[i, 1]])}" for i in by_class[cls])
-        extra = f' stroke-opacity="{fmt(style["opacity"])}"' if "opacity" in style else ""
+        opacity = fmt(style["opacity"]) if "opacity" in style else None
         if width > 0:
-            body.append(f'    <path d="{d}" stroke="{colour}" stroke-width="{fmt(width)}"{extra} '
-                        f'data-class={quoteattr(cls)}/>')
+            body.append("    " + element("path", [("d", d), ("stroke", colour),
+                                                  ("stroke-width", fmt(width)),
+                                                  ("stroke-opacity", opacity),
+                                                  ("data-class", cls)]))
         if "image" in style:
             images.extend(_edge_images(xy, ends, by_class[cls], style, unit, fmt, href))
     body.append("  </g>")
@@ -237,12 +251,13 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
             x, y = fmt(xy[v, 0]), fmt(-xy[v, 1])
             if "image" in style:
                 s = unit * float(style.get("scale", 1.0)) / 2
-                turn = ""
+                turn = None
                 if style.get("rotate") and vid in first_dir:
-                    turn = f' transform="rotate({fmt(-first_dir[vid])} {x} {y})"'
-                marks.append(f'    <image xlink:href={quoteattr(href(style["image"]))} '
-                             f'x="{fmt(xy[v, 0] - s)}" y="{fmt(-xy[v, 1] - s)}" width="{fmt(2 * s)}" '
-                             f'height="{fmt(2 * s)}"{turn}/>')
+                    turn = f"rotate({fmt(-first_dir[vid])} {x} {y})"
+                marks.append("    " + element("image", [
+                    ("xlink:href", href(style["image"])), ("x", fmt(xy[v, 0] - s)),
+                    ("y", fmt(-xy[v, 1] - s)), ("width", fmt(2 * s)), ("height", fmt(2 * s)),
+                    ("transform", turn)]))
             marker = style.get("marker", "circle" if ("size" in style or "fill" in style) else "none")
             if marker == "none":
                 continue
@@ -250,8 +265,9 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
             key = (marker, size, style.get("fill", "#1a1a1a"), style.get("stroke", "none"))
             if key not in shapes:
                 shapes[key] = f"marker{len(shapes)}"
-                defs.append(f'    <g id="{shapes[key]}">{_marker(*key, fmt, unit)}</g>')
-            marks.append(f'    <use xlink:href="#{shapes[key]}" x="{x}" y="{y}"/>')
+                defs.append("    " + element("g", [("id", shapes[key])], _marker(*key, fmt, unit)))
+            marks.append("    " + element("use", [("xlink:href", f"#{shapes[key]}"), ("x", x),
+                                                  ("y", y)]))
         if marks:
             body.append('  <g id="vertices">')
             body.extend(marks)
@@ -266,26 +282,29 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
 def _marker(shape: str, size: float, fill: str, stroke: str, fmt, unit: float) -> str:
     """A marker of the given size centred on the origin."""
     r = size / 2
-    paint = f'fill="{fill}" stroke="{stroke}" stroke-width="{fmt(STROKE_WIDTH * unit / 2)}"'
+    paint = [("fill", fill), ("stroke", stroke), ("stroke-width", fmt(STROKE_WIDTH * unit / 2))]
     if shape == "circle":
-        return f'<circle r="{fmt(r)}" {paint}/>'
+        return element("circle", [("r", fmt(r))] + paint)
     if shape == "square":
-        return f'<rect x="{fmt(-r)}" y="{fmt(-r)}" width="{fmt(size)}" height="{fmt(size)}" {paint}/>'
+        return element("rect", [("x", fmt(-r)), ("y", fmt(-r)), ("width", fmt(size)),
+                                ("height", fmt(size))] + paint)
     if shape == "diamond":
-        return f'<path d="M 0,{fmt(-r)} L {fmt(r)},0 L 0,{fmt(r)} L {fmt(-r)},0 Z" {paint}/>'
+        return element("path", [("d", f"M 0,{fmt(-r)} L {fmt(r)},0 L 0,{fmt(r)} L {fmt(-r)},0 Z")]
+                       + paint)
     if shape == "triangle":
         h = r * math.sqrt(3) / 2
-        return f'<path d="M 0,{fmt(-r)} L {fmt(h)},{fmt(r / 2)} L {fmt(-h)},{fmt(r / 2)} Z" {paint}/>'
+        return element("path", [("d", f"M 0,{fmt(-r)} L {fmt(h)},{fmt(r / 2)} "
+                                      f"L {fmt(-h)},{fmt(r / 2)} Z")] + paint)
     # cross: drawn with the fill colour, as it has no inside.
-    return (f'<path d="M {fmt(-r)},{fmt(-r)} L {fmt(r)},{fmt(r)} M {fmt(-r)},{fmt(r)} '
-            f'L {fmt(r)},{fmt(-r)}" fill="none" stroke="{fill}" '
-            f'stroke-width="{fmt(size / 5)}"/>')
+    return element("path", [("d", f"M {fmt(-r)},{fmt(-r)} L {fmt(r)},{fmt(r)} M {fmt(-r)},{fmt(r)} "
+                                  f"L {fmt(r)},{fmt(-r)}"), ("fill", "none"), ("stroke", fill),
+                            ("stroke-width", fmt(size / 5))])
 
 
 def _edge_images(xy, ends, edges, style, unit, fmt, href) -> list[str]:
     """Copies of the edge image along each edge, `spacing` apart, turned with the edge."""
     step = float(style.get("spacing", unit / 4))
-    link = quoteattr(href(style["image"]))
+    link = href(style["image"])
     out = []
     for i in edges:
         a, b = xy[ends[i, 0]], xy[ends[i, 1]]
@@ -295,9 +314,10 @@ def _edge_images(xy, ends, edges, style, unit, fmt, href) -> list[str]:
         for j in range(n):
             c = a + (b - a) * ((j + 0.5) / n)
             x, y = fmt(c[0]), fmt(-c[1])
-            out.append(f'    <image xlink:href={link} x="{fmt(c[0] - step / 2)}" '
-                       f'y="{fmt(-c[1] - step / 2)}" width="{fmt(step)}" height="{fmt(step)}" '
-                       f'transform="rotate({fmt(-angle)} {x} {y})"/>')
+            out.append("    " + element("image", [
+                ("xlink:href", link), ("x", fmt(c[0] - step / 2)), ("y", fmt(-c[1] - step / 2)),
+                ("width", fmt(step)), ("height", fmt(step)),
+                ("transform", f"rotate({fmt(-angle)} {x} {y})")]))
     return out
 
 

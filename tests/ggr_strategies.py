@@ -16,9 +16,23 @@ from hypothesis import strategies as st
 
 from grammar_lang import boundary as bd
 from grammar_lang.example import EdgeLabel, Primitive
+from grammar_lang.gg_schema import DECORATIONS, Field
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Grammar, Header, Rule
 from grammar_lang.source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
+
+def field_values(f: Field):
+    """Values a `.gg` decoration property of this schema field accepts, as checked values."""
+    if f.kind == "colour":
+        return st.from_regex(r"#[0-9a-f]{6}", fullmatch=True)
+    if f.kind == "bool":
+        return st.booleans()
+    if f.kind == "enum":
+        return st.sampled_from(f.choices)
+    lo = 0.0 if f.lo is None else f.lo
+    hi = 1e6 if f.hi is None else f.hi
+    return st.floats(lo, hi, exclude_min=f.lo_open, exclude_max=f.hi_open, allow_nan=False)
+
 
 # Plain identifiers collide often (good for uniqueness handling); free text exercises quoting.
 plain = st.from_regex(r"[a-zA-Z_][a-zA-Z0-9_₀₁]{0,4}", fullmatch=True)
@@ -79,11 +93,10 @@ def headers(draw) -> Header:
     decorations = []
     for _ in range(draw(st.integers(0, 3))):
         kind = draw(st.sampled_from(sorted(targets)))
-        keys = draw(unique(st.from_regex(r"[a-z][a-z_-]{0,6}", fullmatch=True) | names, 0, 3))
-        values = st.one_of(st.text(max_size=8), st.integers(-10**6, 10**6), st.booleans(),
-                           st.floats(allow_nan=False, allow_infinity=False))
+        schema = {k: f for k, f in DECORATIONS[kind].items() if f.kind != "file"}
+        keys = draw(st.lists(st.sampled_from(sorted(schema)), max_size=3, unique=True))
         decorations.append(Decoration(kind, draw(st.sampled_from(["*"] + list(targets[kind]))),
-                                      tuple((k, draw(values)) for k in keys)))
+                                      tuple((k, draw(field_values(schema[k]))) for k in keys)))
     options = Options(draw(nonneg), draw(nonneg), draw(st.none() | nonneg),
                       draw(st.none() | positive), draw(st.booleans()), draw(st.booleans()),
                       Limits(draw(st.integers(0, 10**6)), draw(st.integers(0, 100)),

@@ -55,3 +55,26 @@ def test_missing_file_and_directory(tmp_path):
         read_text(tmp_path / "nope.gg")
     with pytest.raises(UserError, match="is a directory"):
         read_text(tmp_path)
+
+
+def test_an_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    """Ctrl-C (or any exception) in the middle of a write: the old content stays whole and
+    the temporary file is removed."""
+    import os
+
+    from grammar_lang.fileio import atomic_write
+    target = tmp_path / "out.svg"
+    target.write_text("old", encoding="utf-8")
+
+    def interrupted(fd):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "fsync", interrupted)
+    try:
+        atomic_write(target, "new")
+    except KeyboardInterrupt:
+        pass
+    else:
+        raise AssertionError("the interrupt was swallowed")
+    assert target.read_text(encoding="utf-8") == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.svg"]

@@ -14,7 +14,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from conftest import ROOT
-from grammar_lang.diagnostics import UserError
+from grammar_lang.diagnostics import EXCERPT_WIDTH, UserError
 from grammar_lang.gg_parser import STATEMENT_KEYWORDS, parse_text
 from grammar_lang.source import ExampleSource
 
@@ -47,7 +47,11 @@ def _check_outcome(text: str) -> None:
             if d.source is not None and 1 <= d.span.line <= d.source.count("\n") + 1:
                 # the excerpt shows the line the parser counted (lines end at "\n" only)
                 shown = d.source.split("\n")[d.span.line - 1].rstrip("\r").expandtabs(1)
-                assert d.excerpt().split("\n")[0].endswith(shown)
+                first = d.excerpt().split("\n")[0]
+                if len(shown) <= EXCERPT_WIDTH:
+                    assert first.endswith(shown)
+                else:       # a long line is shown around the column, clipped with '…'
+                    assert first.split(" | ", 1)[1].strip("…") in shown
         return
     assert isinstance(result, ExampleSource)
 
