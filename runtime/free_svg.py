@@ -5,29 +5,24 @@ its label's decoration (`decorate face|edge|vertex LABEL key=value`, as for comp
 overridden by its own attributes of the same names: `fill`, `stroke`, `width`, `opacity`, and
 for vertices `marker` (circle, square, diamond, triangle, cross) with `size`, or `d`, path data
 in drawing coordinates (y up), drawn as it is. Everything is inside one group that turns y up,
-so coordinates are written as they are. Every value written goes through `_attr`, which
-escapes it for an attribute.
+so coordinates are written as they are. Every attribute is written through
+`svg_out.element`, the one function that escapes them.
 """
 
 from __future__ import annotations
 
-import html
 import math
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 from grammar_lang.fileio import atomic_write
 
 from .drawing import DEdge, Drawing, DVertex
 from .free_host import FreeHost
-from .svg_out import FILL_PALETTE, MARGIN, SCREEN, STROKE_WIDTH, _Fmt, _marker, decorations, \
-    _style_for
+from .svg_out import FILL_PALETTE, MARGIN, SCREEN, STROKE_WIDTH, _Fmt, _marker, _style_for, \
+    decorations, element
 
 PAINT = ("fill", "stroke", "width", "opacity", "marker", "size", "d")
-
-
-def _attr(value) -> str:
-    """A value as the text of a double-quoted SVG attribute."""
-    return html.escape(str(value), quote=True)
 
 
 def render_free_svg(host: FreeHost, header) -> str:
@@ -45,7 +40,7 @@ def render_free_svg(host: FreeHost, header) -> str:
     k = SCREEN / max(vb[2], vb[3])
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{" ".join(fmt(x) for x in vb)}" '
            f'width="{fmt(vb[2] * k)}" height="{fmt(vb[3] * k)}">',
-           f"  <title>{html.escape(header.source or 'drawing')}: {host.counts['vertex']} "
+           f"  <title>{escape(header.source or 'drawing')}: {host.counts['vertex']} "
            f"vertices, {host.counts['edge']} edges, {host.counts['face']} faces</title>",
            '  <g transform="scale(1,-1)" stroke-linecap="round" stroke-linejoin="round">']
     decos = {kind: decorations(header, kind) for kind in ("face", "edge", "vertex")}
@@ -65,16 +60,13 @@ def render_free_svg(host: FreeHost, header) -> str:
     return "\n".join(out) + "\n"
 
 
-def _paint(style: dict, fmt, default_fill: str, default_stroke: str, unit: float) -> str:
-    parts = [f'fill="{_attr(style.get("fill", default_fill))}"',
-             f'stroke="{_attr(style.get("stroke", default_stroke))}"']
-    if "width" in style:
-        parts.append(f'stroke-width="{_attr(_num(style["width"], fmt))}"')
-    elif default_stroke != "none" or "stroke" in style:
-        parts.append(f'stroke-width="{fmt(STROKE_WIDTH * unit)}"')
-    if "opacity" in style:
-        parts.append(f'opacity="{_attr(_num(style["opacity"], fmt))}"')
-    return " ".join(parts)
+def _paint(style: dict, fmt, default_fill: str, default_stroke: str, unit: float) -> list:
+    """(name, value) pairs; `element` escapes them."""
+    width = _num(style["width"], fmt) if "width" in style else \
+        fmt(STROKE_WIDTH * unit) if default_stroke != "none" or "stroke" in style else None
+    return [("fill", style.get("fill", default_fill)),
+            ("stroke", style.get("stroke", default_stroke)), ("stroke-width", width),
+            ("opacity", _num(style["opacity"], fmt) if "opacity" in style else None)]
 
 
 def _num(value, fmt) -> str:
@@ -84,19 +76,20 @@ def _num(value, fmt) -> str:
 
 def _draw(host: FreeHost, el, style: dict, fmt, unit: float, faces: list[str]) -> str:
     pt = lambda v: f"{fmt(host.pos(v)[0])},{fmt(host.pos(v)[1])}"     # noqa: E731
-    label = f'data-label="{_attr(el.label)}"'
+    label = [("data-label", el.label)]
     if el.kind == "face":
         fill = FILL_PALETTE[faces.index(el.label) % len(FILL_PALETTE)] \
             if el.label in faces else FILL_PALETTE[0]
         d = "M " + " L ".join(pt(v) for v in el.ends) + " Z"
-        return f'<path d="{d}" {label} {_paint(style, fmt, fill, "none", unit)}/>'
+        return element("path", [("d", d)] + label + _paint(style, fmt, fill, "none", unit))
     if el.kind == "edge":
         (x1, y1), (x2, y2) = host.pos(el.ends[0]), host.pos(el.ends[1])
-        paint = _paint(style, fmt, "none", "#1a1a1a", unit)
-        return (f'<line x1="{fmt(x1)}" y1="{fmt(y1)}" x2="{fmt(x2)}" y2="{fmt(y2)}" {label} '
-                f'{paint}/>')
+        return element("line", [("x1", fmt(x1)), ("y1", fmt(y1)), ("x2", fmt(x2)),
+                                ("y2", fmt(y2))] + label
+                       + _paint(style, fmt, "none", "#1a1a1a", unit))
     if style.get("d"):
-        return f'<path d="{_attr(style["d"])}" {label} {_paint(style, fmt, "none", "#1a1a1a", unit)}/>'
+        return element("path", [("d", style["d"])] + label
+                       + _paint(style, fmt, "none", "#1a1a1a", unit))
     marker = style.get("marker", "none")
     if marker not in ("circle", "square", "diamond", "triangle", "cross"):
         return ""
@@ -104,9 +97,9 @@ def _draw(host: FreeHost, el, style: dict, fmt, unit: float, faces: list[str]) -
     size = float(style["size"]) if isinstance(style.get("size"), (int, float)) else unit / 5
     if not math.isfinite(size) or size <= 0:
         return ""
-    shape = _marker(marker, size, _attr(style.get("fill", "#1a1a1a")),
-                    _attr(style.get("stroke", "none")), fmt, unit)
-    return f'<g transform="translate({fmt(x)},{fmt(y)})" {label}>{shape}</g>'
+    shape = _marker(marker, size, str(style.get("fill", "#1a1a1a")),
+                    str(style.get("stroke", "none")), fmt, unit)
+    return element("g", [("transform", f"translate({fmt(x)},{fmt(y)})")] + label, shape)
 
 
 def write_free_svg(host: FreeHost, header, path: str | Path) -> None:
