@@ -36,7 +36,7 @@ from grammar_lang.blas import pin_blas_threads  # noqa: E402
 pin_blas_threads()
 
 from compiler.cli import main as ggc  # noqa: E402
-from runtime.cli import main as ggrun  # noqa: E402
+from report.ggrun import main as ggrun  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus"
 OUTCOMES = ("internal error", "user error (exit 2)", "ok", "hang/timeout")

@@ -24,6 +24,7 @@ pin_blas_threads()
 
 from runtime.costs import SizeCost  # noqa: E402
 from runtime.generate import Engine  # noqa: E402
+from report.ggrun import compile_example  # noqa: E402
 from runtime.run_cmd import load_grammar  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus" / "examples"
@@ -31,7 +32,7 @@ DEFAULT = ["square-filled.svg", "l.svg", "plus.svg", "h.svg", "branches.svg"]
 
 
 def measure(path: str, sizes: list[int], window: int, seed: int) -> list[dict]:
-    grammar = load_grammar(path)
+    grammar = load_grammar(path, compile_example)
     rows = []
     engine = Engine(grammar, seed=seed)
     for size in sizes:

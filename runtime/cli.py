@@ -33,13 +33,14 @@ def build_parser() -> ArgumentParser:
     return p
 
 
-def _main(argv: Sequence[str]) -> int:
+def _main(argv: Sequence[str], compile_example=None) -> int:
     if argv and argv[0] == "check":
         args = build_check_parser().parse_args(argv[1:])
         pin_blas_threads()
         from .verifier import check_command
         return check_command(args.example, args.drawing, args.tolerance, 0 if args.all else 50)
     args = build_parser().parse_args(argv)
+    args.compile_example = compile_example    # None: rule files only (see report/ggrun.py)
     pin_blas_threads()
     if args.repl:
         from .repl import repl_command
@@ -48,8 +49,9 @@ def _main(argv: Sequence[str]) -> int:
     return run_command(args)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    return run(_main, argv)
+def main(argv: Sequence[str] | None = None, compile_example=None) -> int:
+    """`ggrun`; given the compiler's `compile_example`, it also runs examples (.gg, .svg)."""
+    return run(lambda a: _main(a, compile_example), argv)
 
 
 if __name__ == "__main__":

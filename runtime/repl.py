@@ -95,13 +95,14 @@ class Session:
     engine: Engine | None = None
     watch: str | None = None
     interrupted: bool = False
+    compile_example: object = None      # the compiler, when the entry point hands it in
     _directed: dict = field(default_factory=dict)
 
     # --- the grammar ------------------------------------------------------------------------
     def load(self, path: str) -> None:
         """Load a grammar (.ggr) or compile an example (.gg, .svg); the old session stays on
         any error."""
-        self.use(load_grammar(path), path)
+        self.use(load_grammar(path, self.compile_example), path)
 
     def use(self, grammar: Grammar, path: str) -> None:
         """Start a session on a grammar already in memory."""
@@ -264,7 +265,8 @@ def repl_command(args: argparse.Namespace, stdin: TextIO | None = None,
                         "in the REPL, 'save FILE.json' and 'render FILE.svg' write drawings")
     stdin, stdout, stderr = stdin or sys.stdin, stdout or sys.stdout, stderr or sys.stderr
     interactive = stdin.isatty() and stdout.isatty()
-    session = Session(Output(stdout, stderr, colour=interactive), Options.from_args(args))
+    session = Session(Output(stdout, stderr, colour=interactive), Options.from_args(args),
+                      compile_example=getattr(args, "compile_example", None))
     if args.file is not None:
         session.load(args.file)
         session.out.line(f"loaded {session.name}: {len(session.grammar.rules)} rules")

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import importlib
 import multiprocessing
 import sys
 import threading
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import EXIT_FAILED, EXIT_INTERRUPTED
@@ -80,31 +79,28 @@ class Job:
     png: tuple[int | None, float | None] = (None, None)     # --width, --scale
 
 
-def load_grammar(path: str) -> Grammar:
+# What turns an example into a grammar: the compiler's `compile_example`, handed in by the
+# `ggrun` entry point (report/ggrun.py), which sits above both packages. The runtime never
+# imports the compiler, so on its own it runs rule files only.
+CompileExample = Callable[[object], object]
+
+
+def load_grammar(path: str, compile_example: CompileExample | None = None) -> Grammar:
     p = Path(path)
     suffix = p.suffix.lower()
     if suffix == ".ggr":
         from grammar_lang.ggr_parser import load_ggr
         return load_ggr(p)
     if suffix in (".gg", ".svg"):
-        return _compile_in_memory(p)
+        if compile_example is None:
+            raise error(f"cannot compile '{p.name}' here: this entry point runs rule files",
+                        Span(str(p)), f"compile it first ('ggc compile {p.name}'), or run "
+                                      "the 'ggrun' command, which compiles examples")
+        from grammar_lang.loader import load_example
+        result = compile_example(load_example(p))
+        return getattr(result, "grammar", result)
     raise error(f"don't know how to read '{p.name}'", Span(str(p)),
                 "give a grammar (.ggr) or an example (.gg, .svg)")
-
-
-def _compile_in_memory(p: Path) -> Grammar:
-    # runtime never imports compiler statically (they are separate layers that ship in one
-    # distribution); the compiler's entry point is looked up only when an example is given.
-    try:
-        infer = importlib.import_module("compiler.infer")
-        compile_example = infer.compile_example
-    except (ImportError, AttributeError):
-        raise error(f"cannot compile '{p.name}' in memory: this installation has no "
-                    "compiler.infer.compile_example", Span(str(p)),
-                    f"compile it first: 'ggc {p.name}', then run 'ggrun' on the .ggr") from None
-    from grammar_lang.loader import load_example
-    result = compile_example(load_example(p))
-    return getattr(result, "grammar", result)
 
 
 def _parse_limits(items: list[str]) -> tuple[tuple[int, int], ...]:
@@ -222,7 +218,7 @@ def run_command(args: argparse.Namespace) -> int:
                     "end the name with .svg, .png, .json or .graphml")
     from grammar_lang.png import check_size
     check_size(args.width, args.scale)
-    grammar = load_grammar(args.file)
+    grammar = load_grammar(args.file, getattr(args, "compile_example", None))
     from .costs import parse_cost
     # Validate the cost spec once, before any work.
     if grammar.is_free and (args.cost or args.direction or args.extent):

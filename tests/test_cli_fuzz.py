@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 
 from compiler.cli import main as ggc
 from conftest import CORPUS, ROOT
-from runtime.cli import main as ggrun
+from report.ggrun import main as ggrun
 
 FUZZ = settings(max_examples=60, deadline=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,

@@ -9,7 +9,7 @@ import json
 
 from compiler.cli import main as ggc
 from conftest import ROOT
-from runtime.cli import main as ggrun
+from report.ggrun import main as ggrun
 
 EXAMPLE = str(ROOT / "examples" / "square-hollow.gg")
 GRAMMAR = str(ROOT / "examples" / "square-walls.ggr")

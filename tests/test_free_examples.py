@@ -279,7 +279,7 @@ def test_ggrun_writes_productions_as_svg_json_and_graphml(tmp_path):
 
     import networkx as nx
 
-    from runtime.cli import main
+    from report.ggrun import main
     for suffix in ("svg", "json", "graphml"):
         out = tmp_path / f"tree.{suffix}"
         assert main([str(ROOT / "examples" / "honda-tree.ggr"), "--steps", "20", "--out",

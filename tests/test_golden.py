@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from conftest import CORPUS, ROOT
-from runtime.cli import main
+from report.ggrun import main
 
 GOLDEN = ROOT / "tests" / "golden"
 CASES = [

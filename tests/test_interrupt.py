@@ -18,7 +18,7 @@ GRAMMAR = ROOT / "examples" / "square-walls.ggr"
 
 
 def _interrupt(tmp_path, extra, group: bool):
-    cmd = [sys.executable, "-m", "runtime.cli", str(GRAMMAR), "--steps", "400", "--cost", "none",
+    cmd = [sys.executable, "-m", "report.ggrun", str(GRAMMAR), "--steps", "400", "--cost", "none",
            "--count", "200", "--out", str(tmp_path / "d.json"), "--quiet", *extra]
     p = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True, start_new_session=True,
                          env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})

@@ -17,7 +17,7 @@ from conftest import CORPUS, ROOT
 from grammar_lang import limits
 from grammar_lang.diagnostics import UserError
 from grammar_lang.fileio import read_text
-from runtime.cli import main as ggrun
+from report.ggrun import main as ggrun
 
 EXAMPLES = ROOT / "examples"
 

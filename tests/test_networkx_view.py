@@ -8,7 +8,7 @@ from conftest import CORPUS, corpus_names
 from grammar_lang import boundary as bd
 from grammar_lang.loader import load_example
 from grammar_lang.networkx_view import side_graph
-from runtime.cli import main
+from report.ggrun import main
 from runtime.drawing import load_drawing
 from runtime.graphml_out import drawing_graph
 

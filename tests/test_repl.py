@@ -17,7 +17,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from runtime.cli import build_parser, main
+from report.ggrun import compile_example, main
+from runtime.cli import build_parser
 from runtime.repl import Output, Session, execute, repl_command
 from runtime.repl_commands import COMMANDS
 from runtime.repl_complete import completions
@@ -33,6 +34,7 @@ GRAMMAR = ROOT / "examples" / "square-walls.ggr"
 def script(commands: str, *flags: str, file: str | None = str(GRAMMAR), echo: bool = False):
     """Run a REPL script in-process: (exit status, stdout, stderr)."""
     args = build_parser().parse_args(([file] if file else []) + ["--repl", *flags])
+    args.compile_example = compile_example      # as the ggrun command hands it in
     out, err = io.StringIO(), io.StringIO()
     rc = repl_command(args, io.StringIO(commands), out, err, echo)
     return rc, out.getvalue(), err.getvalue()
@@ -40,7 +42,7 @@ def script(commands: str, *flags: str, file: str | None = str(GRAMMAR), echo: bo
 
 def session(grammar, name: str = "g.ggr") -> tuple[Session, io.StringIO]:
     buf = io.StringIO()
-    s = Session(Output(buf, buf, colour=False))
+    s = Session(Output(buf, buf, colour=False), compile_example=compile_example)
     s.use(grammar, name)
     return s, buf
 
@@ -66,6 +68,7 @@ def _replay(block: str, where: Path) -> str:
     os.chdir(where)
     try:
         args = build_parser().parse_args(argv[1:])
+        args.compile_example = compile_example
         out = io.StringIO()
         repl_command(args, io.StringIO(commands), out, out, echo=True)
     finally:
@@ -286,7 +289,7 @@ def test_corpus_examples_load_and_explore():
 
 def test_stdin_not_a_terminal_end_to_end(tmp_path):
     # The installed entry point, with real pipes: plain text, no escape codes.
-    proc = subprocess.run([sys.executable, "-m", "runtime.cli", str(GRAMMAR), "--repl"],
+    proc = subprocess.run([sys.executable, "-m", "report.ggrun", str(GRAMMAR), "--repl"],
                           input="rules\nnosuch\n", capture_output=True, text=True,
                           cwd=tmp_path, timeout=120)
     assert proc.returncode == 1

@@ -198,7 +198,7 @@ def _not_blank(im) -> bool:
 
 
 def test_ggrun_writes_png_of_the_asked_width(tmp_path):
-    from runtime.cli import main as ggrun
+    from report.ggrun import main as ggrun
     out = tmp_path / "t.png"
     assert ggrun([str(ROOT / "examples" / "tree.gg"), "--steps", "60", "--seed", "2",
                   "--out", str(out), "--width", "320", "--quiet"]) == 0

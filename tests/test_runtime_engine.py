@@ -158,7 +158,7 @@ def test_face_labels_keep_squares_apart():
 
 
 def _ggrun(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "runtime.cli", *args], cwd=cwd,
+    return subprocess.run([sys.executable, "-m", "report.ggrun", *args], cwd=cwd,
                           capture_output=True, text=True, timeout=120)
 
 

@@ -452,7 +452,7 @@ def test_faces_satisfy_euler(name, rows, cols):
 # --- the command ----------------------------------------------------------------------------
 
 def ggrun(capsys, *args):
-    from runtime.cli import main
+    from report.ggrun import main
     code = main([str(a) for a in args])
     out = capsys.readouterr()
     return code, out.out, out.err
