@@ -69,12 +69,12 @@ class DensityCost:
 
 @dataclass(frozen=True)
 class LabelCost:
-    label: int
+    labels: tuple[int, ...]      # the edge labels counted together
     fraction: float
     name: str = "label"
 
     def value(self, s: Stats) -> float:
-        return abs(s.label_count[self.label] - self.fraction * s.edges)
+        return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
 
 
 def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
@@ -86,8 +86,9 @@ def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
     return u < math.exp(-delta / temperature)
 
 
-def parse_cost(spec: str | None, label_names, default_size: int) -> Cost:
-    """Parse `--cost NAME[:ARG[:ARG]]`; user errors carry a hint."""
+def parse_cost(spec: str | None, labels, default_size: int) -> Cost:
+    """Parse `--cost NAME[:ARG[:ARG]]` against the grammar's edge labels (`Header.labels`);
+    user errors carry a hint."""
     if spec is None:
         return SizeCost(default_size)
     name, *args = spec.split(":")
@@ -95,7 +96,7 @@ def parse_cost(spec: str | None, label_names, default_size: int) -> Cost:
         "none": lambda a: NoCost(),
         "size": lambda a: SizeCost(_int(a[0], spec) if a else default_size),
         "density": lambda a: DensityCost(_float(a[0], spec)),
-        "label": lambda a: _label(a, label_names, spec),
+        "label": lambda a: _label(a, labels, spec),
     }
     if name not in makers:
         from grammar_lang.diagnostics import did_you_mean
@@ -109,19 +110,31 @@ def parse_cost(spec: str | None, label_names, default_size: int) -> Cost:
     if name == "density" and not args:
         raise error("cost 'density' needs a target", None, "write e.g. --cost density:0.5")
     if name == "label" and not args:
-        raise error("cost 'label' needs an edge label", None, "write e.g. --cost label:x:0.3")
+        raise error("cost 'label' needs a name", None,
+                    "a face label, an edge class or an edge label: e.g. --cost label:window:0.2")
     return makers[name](args)
 
 
-def _label(args: list[str], names, spec: str) -> Cost:
-    if args[0] not in names:
+def _label(args: list[str], labels, spec: str) -> Cost:
+    """`label:NAME[:F]`: the edges of edge label NAME, or of edge class NAME, or beside a face
+    of label NAME (the names the user gave in the .gg), make up a fraction F of all edges."""
+    name = args[0]
+    groups = {
+        "edge label": [k for k, l in enumerate(labels) if l.name == name],
+        "edge class": [k for k, l in enumerate(labels) if l.cls == name],
+        "face label": [k for k, l in enumerate(labels) if name in (l.left, l.right)],
+    }
+    chosen = next((ks for ks in groups.values() if ks), None)
+    if chosen is None:
         from grammar_lang.diagnostics import did_you_mean
-        raise error(f"--cost {spec}: no edge label '{args[0]}'", None,
-                    did_you_mean(args[0], names) or "labels: " + ", ".join(names))
+        known = sorted({l.name for l in labels} | {l.cls for l in labels}
+                       | {f for l in labels for f in (l.left, l.right)})
+        raise error(f"--cost {spec}: no face label, edge class or edge label '{name}'", None,
+                    did_you_mean(name, known) or "names: " + ", ".join(known))
     f = _float(args[1], spec) if len(args) > 1 else 0.5
     if not 0 <= f <= 1:
         raise error(f"--cost {spec}: the fraction must be between 0 and 1")
-    return LabelCost(list(names).index(args[0]), f)
+    return LabelCost(tuple(chosen), f)
 
 
 def _int(text: str, spec: str) -> int:

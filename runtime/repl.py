@@ -111,10 +111,9 @@ class Session:
                         "angle-graph rules", None,
                         f"run them with 'ggrun {Path(path).name} --steps N --out FILE.svg'")
         o = self.options
-        names = [l.name for l in grammar.header.labels]
         try:
-            engine = Engine(grammar, o.seed, parse_cost(o.cost, names, o.steps), o.temperature,
-                            bidirectional=o.bidirectional, limits=dict(o.limits))
+            engine = Engine(grammar, o.seed, parse_cost(o.cost, grammar.header.labels, o.steps),
+                            o.temperature, bidirectional=o.bidirectional, limits=dict(o.limits))
         except ValueError as exc:
             raise error(f"cannot run '{Path(path).name}': {exc}", None,
                         "check the grammar with 'ggc check'") from None

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import multiprocessing
 import sys
 import threading
@@ -158,7 +159,7 @@ def run_job(job: Job, progress=None) -> Summary | None:
     from .costs import parse_cost       # numpy and the engine load only when a run starts,
     from .generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
-                    parse_cost(job.cost, [l.name for l in job.grammar.header.labels], job.steps),
+                    parse_cost(job.cost, job.grammar.header.labels, job.steps),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
                     extent=job.extent)
     summary = engine.run(job.steps, progress, stop=interrupt.requested)
@@ -225,7 +226,10 @@ def run_command(args: argparse.Namespace) -> int:
         raise error("--cost, --direction and --extent apply to angle-graph rules, not to "
                     "productions",
                     None, "productions run forward, one step at a time, by priority and weight")
-    parse_cost(args.cost, [l.name for l in grammar.header.labels], args.steps)
+    parse_cost(args.cost, grammar.header.labels, args.steps)
+    if not (math.isfinite(args.temperature) and args.temperature >= 0):
+        raise error(f"--temperature {args.temperature:g} makes no sense", None,
+                    "give a finite temperature of at least 0 (0 refuses every cost increase)")
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)
     jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,

@@ -132,3 +132,24 @@ def test_an_extent_stretches_the_frame(castle):
     eng.run(20)
     x0, y0, x1, y1 = eng.host.frame.box
     assert all(x0 - 1e-6 <= eng.host.pos[v][0] <= x1 + 1e-6 for v in eng.host.vertices())
+
+
+def test_costs_take_the_names_of_the_example():
+    """`--cost label:NAME` takes a face label, an edge class or an edge label."""
+    from runtime.costs import LabelCost, parse_cost
+    labels = load_example(EXAMPLES / "castle.gg").labels
+    window = parse_cost("label:window:0.2", labels, 10)
+    assert isinstance(window, LabelCost) and window.labels
+    assert all("window" in (labels[k].left, labels[k].right) for k in window.labels)
+    ground = parse_cost("label:ground", labels, 10)
+    assert all(labels[k].cls == "ground" for k in ground.labels)
+    with pytest.raises(UserError, match="no face label, edge class or edge label"):
+        parse_cost("label:windo", labels, 10)
+
+
+@pytest.mark.parametrize("t", ["nan", "inf", "-1"])
+def test_a_temperature_that_makes_no_sense_is_refused(t, capsys):
+    from report.ggrun import main
+    assert main([str(EXAMPLES / "square-walls.ggr"), "--temperature", t, "--out",
+                 "/dev/null/x.svg"]) == 2
+    assert "makes no sense" in capsys.readouterr().err

@@ -180,7 +180,7 @@ def test_cli_writes_identical_json_for_the_same_seed(tmp_path):
 
 @pytest.mark.parametrize("args,needle", [
     (["--cost", "nope"], "unknown cost"),
-    (["--cost", "label:zz"], "no edge label"),
+    (["--cost", "label:zz"], "no face label, edge class or edge label"),
     (["--limit", "x"], "PRIORITY=N"),
     (["--out", "a.bmp"], "unknown output format"),
     (["--out", "a.png", "--width", "0"], "--width 0 is out of range"),
