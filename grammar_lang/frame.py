@@ -13,7 +13,6 @@ on it.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from . import boundary as bd
@@ -163,10 +162,3 @@ def _frame_error(ex, edge: int, message: str, hint: str):
     spans = ex.graph.spans
     span = spans[edge] if edge < len(spans) and spans[edge] is not None else Span(ex.path)
     return error(message, span, hint)
-
-
-def polygon_area(frame: Frame) -> float:
-    n = len(frame.corners)
-    return 0.5 * abs(math.fsum(frame.corners[k].x * frame.corners[(k + 1) % n].y
-                               - frame.corners[(k + 1) % n].x * frame.corners[k].y
-                               for k in range(n)))

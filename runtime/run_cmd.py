@@ -143,6 +143,11 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
     rigid = max((l.length or 0.0 for l in grammar.header.labels
                  if any(c.name == l.cls and (c.rigid or c.fixed) for c in grammar.header.classes)),
                 default=0.0)
+    frame = grammar.header.frame
+    fw, fh = frame.size
+    if not frame.axis_aligned and abs(w / h - fw / fh) > 1e-9 * (fw / fh):
+        raise error(f"--extent {text} would change the angles of this frame's slanted sides",
+                    None, f"keep its proportions: --extent {w:g}x{w * fh / fw:g}")
     if min(w, h) < rigid:
         raise error(f"--extent {text} is smaller than the example's largest rigid part "
                     f"({rigid:g} units long)", None, "give a larger extent")
