@@ -153,3 +153,16 @@ def test_a_temperature_that_makes_no_sense_is_refused(t, capsys):
     assert main([str(EXAMPLES / "square-walls.ggr"), "--temperature", t, "--out",
                  "/dev/null/x.svg"]) == 2
     assert "makes no sense" in capsys.readouterr().err
+
+
+def test_an_extent_keeps_the_proportions_of_a_slanted_frame(castle):
+    from dataclasses import replace
+
+    from grammar_lang.frame import Corner, Frame
+    from runtime.run_cmd import parse_extent
+    g = castle[1].grammar
+    slanted = Frame((Corner(0, 0.0, 0.0), Corner(0, 400.0, 0.0), Corner(0, 200.0, 300.0)))
+    g = replace(g, header=replace(g.header, frame=slanted))
+    assert parse_extent("800x600", g) == (800.0, 600.0)
+    with pytest.raises(UserError, match="slanted"):
+        parse_extent("800x300", g)
