@@ -15,7 +15,10 @@ from .source import Decoration, EdgeClass, ExampleGraph, Options
 @dataclass(frozen=True)
 class EdgeLabel:
     """ã = (left, right, θ, class). θ ∈ [0°, 180°) is the direction of half-edge `a`; left and
-    right are the faces seen walking in that direction. A rigid label also fixes its length."""
+    right are the faces seen walking in that direction. A rigid label also fixes its length.
+    `typical` is the median length of the example's edges of this label (None for an example
+    given without geometry): the runtime draws new edges of this label around it, so that a
+    structure grown in one move keeps the proportions of its parts."""
 
     name: str
     left: str
@@ -23,6 +26,7 @@ class EdgeLabel:
     angle: float
     cls: str
     length: float | None = None
+    typical: float | None = None
 
     def direction(self, bar: bool) -> float:
         """Direction in [-180°, 180°) of the half-edge `a` (bar=False) or `ā` (bar=True)."""

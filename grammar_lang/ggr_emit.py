@@ -137,6 +137,8 @@ def _header(h: Header, names: list[str]) -> list[str]:
             line += f" class={name(l.cls)}"
         if l.length is not None:
             line += f" length={num(l.length)}"
+        if l.typical is not None:
+            line += f" typical={num(l.typical)}"
         out.append(line)
     if h.primitives:
         out.append("")

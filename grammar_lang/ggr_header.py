@@ -181,13 +181,14 @@ class HeaderReader(Reader):
         if cls not in classes:
             raise self.fail(f"unknown edge class '{cls}'", where["class"],
                             did_you_mean(cls, classes) or "declare it with a 'class' line")
-        length = s.get("length")
-        if length is not None and length <= 0:
-            raise self.fail("the length must be positive", where["length"])
+        length, typical = s.get("length"), s.get("typical")
+        for key, value in (("length", length), ("typical", typical)):
+            if value is not None and not value > 0:
+                raise self.fail(f"the {key} must be positive", where[key])
         name = self.name(tok)
         if not name:
             raise self.fail("an edge label needs a name", tok)
-        return EdgeLabel(name, s["left"], s["right"], angle, cls, length)
+        return EdgeLabel(name, s["left"], s["right"], angle, cls, length, typical)
 
     def _half(self, node: Tree, label_ids: dict[str, int]) -> tuple[int, Token]:
         bar = len(node.children) == 2
@@ -256,5 +257,5 @@ _LIMIT_KEYS = {"generations": "int", "half_edges": "int", "graphs": "int", "seco
 _CLASS_KEYS = {"min": "optfloat", "max": "optfloat", "fixed": "optfloat", "tile": "optfloat",
                "rigid": "bool", "border": "bool"}
 _LABEL_KEYS = {"angle": "float", "left": "name", "right": "name", "class": "name",
-               "length": "optfloat"}
+               "length": "optfloat", "typical": "optfloat"}
 _PRIMITIVE_KEYS = {"count": "int"}

@@ -240,18 +240,25 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
             a_angle, left, right = ang - 180.0, fr, fl
         a_angle = round(a_angle, 9) % 180.0
         length = lengths[edges[0]] if (cls in rigid and lengths) else None
-        protos.append((a_angle, left, right, cls, length, edges, len(gk) > 2))
+        typical = _round_sig(float(np.median([lengths[e] for e in edges]))) if lengths else None
+        protos.append((a_angle, left, right, cls, length, edges, len(gk) > 2, typical))
     # Readers expect labels in a stable, meaningful order: by class, faces, then direction.
     protos.sort(key=lambda p: (p[3], rank[p[1]], rank[p[2]], p[0], p[5][0]))
     names = _names(protos, rank)
-    for idx, ((a_angle, left, right, cls, length, edges, _), name) in enumerate(zip(protos, names)):
-        labels.append(EdgeLabel(name, left, right, a_angle, cls, length))
+    for idx, ((a_angle, left, right, cls, length, edges, _, typ), name) in \
+            enumerate(zip(protos, names)):
+        labels.append(EdgeLabel(name, left, right, a_angle, cls, length, typ))
         for e in edges:
             a, l, r = edge_keys[e][0], edge_keys[e][1], edge_keys[e][2]
             # Whether u→v walks along `a`: told by the faces when they differ, else by direction.
             forward = (l == left) if l != r else _circ_dist(a, a_angle, 360.0) < 90.0
             edge_label[e] = (idx, forward)
     return labels, edge_label, notes
+
+
+def _round_sig(x: float, digits: int = 6) -> float:
+    """`x` to `digits` significant digits, so that the .ggr shows a readable length."""
+    return float(f"{x:.{digits}g}")
 
 
 def _snap(mean: float, step: float, tol: float, period: float) -> float:
@@ -279,7 +286,7 @@ def _names(protos, rank) -> list[str]:
     for b in base:
         count[b] += 1
     names = []
-    for (angle, left, right, cls, length, _, is_rigid), b in zip(protos, base):
+    for (angle, left, right, cls, length, _, is_rigid, _), b in zip(protos, base):
         name = b
         if count[b] > 1:
             li, ri = rank[left], rank[right]
@@ -290,7 +297,7 @@ def _names(protos, rank) -> list[str]:
     for n in names:
         seen[n] += 1
     out, used = [], set()
-    for (_, _, _, cls, _, _, is_rigid), n in zip(protos, names):
+    for (_, _, _, cls, _, _, is_rigid, _), n in zip(protos, names):
         if seen[n] > 1:
             n = f"{n}_c{cls}" if cls.isidentifier() or cls.isdigit() else f"{n}_c"
         k, cand = 1, n

@@ -37,6 +37,10 @@ def place_frame(host: Host, frame: Frame) -> None:
     host.frame_face = inside
     h = host.header
     host.border_labels = border_labels(h.labels, h.classes)
+    # The frame's own sides (border edges with the inside face beside them) are as long as
+    # the frame; other border edges are the feet of what stands on it.
+    host.side_labels = frozenset(k for k in host.border_labels
+                                 if inside in (h.labels[k].left, h.labels[k].right))
     host.on_border = border_primitives(h.primitives, host.border_labels)
 
 

@@ -5,7 +5,9 @@ touching them, `p_v − p_u − s_e d_e = 0` with the length s_e unknown: a line
 over positions and lengths, the fixed vertices moving to b. Its solutions are x̂ + K λ.
 
 A sample is drawn by projecting a random target onto that affine space: target lengths are drawn
-from the edge class's range (or kept, for edges that already exist) and target positions are
+around the label's typical length in the example, within its class's range (or kept, for edges
+that already exist), so that a structure made in one move keeps its parts' proportions and its
+cycles close with every length positive; target positions are
 the place the change happens (or kept, for old vertices; a new free-standing component gets a
 fresh place for every sample); the projection is a weighted least
 squares step, so old vertices move least and new ones most. Projecting a random point onto the
@@ -42,6 +44,9 @@ NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
 # and the stretches of bare side beside it take the rest, so their lengths are cheapest.
 FRAME_SIDE = 100.0
 SHRINK = 0.75
+# New edges are drawn within ±50 % of their label's typical length in the example (stretched as
+# their neighbourhood is), or of the local scale where the typical length is not known.
+SPREAD = 0.5
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
@@ -69,7 +74,7 @@ class Solver:
         self.new_prim = dict(change.new)
         self.removed = set(change.removed)
         self.aim = self._aims()
-        self.scale = self._local_scale()
+        self.scale, self.stretch = self._local_scale()
         # A part placed in a frame with nothing around it may also be drawn larger than the
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
@@ -81,25 +86,33 @@ class Solver:
         self.bridges = [(a, b) for a, b in change.glue
                         if a[0] not in self.new_prim and b[0] not in self.new_prim]
 
-    def _local_scale(self) -> float:
+    def _local_scale(self) -> tuple[float, float]:
         """The typical edge length where the change happens (the edges it removes or cuts),
         the unit when it removes none: new parts are drawn at the scale of what they replace,
-        so that in a dense neighbourhood their edges do not reach across their neighbours."""
+        so that in a dense neighbourhood their edges do not reach across their neighbours.
+        Second, how stretched that neighbourhood is against the example (the median of its
+        edges' lengths over their labels' typical lengths; 1 where none is known)."""
         host = self.host
-        lengths = []
+        typical = host.t.typical
+        lengths, ratios = [], []
+
+        def seen(v, w, lab):
+            d = _dist(host.pos[v], host.pos[w])
+            lengths.append(d)
+            if typical and typical[lab] == typical[lab] and lab not in host.side_labels:
+                ratios.append(d / typical[lab])
+
         for v in self.change.removed:
-            for s in host.link[v]:
+            for i, s in enumerate(host.link[v]):
                 if s is not None:
-                    p, q = host.pos[v], host.pos[s[0]]
-                    lengths.append(_dist(p, q))
+                    seen(v, s[0], host.t.label[host.prim[v]][i])
         for v, i in self.change.cut:
-            if host.t.label[host.prim[v]][i] in host.border_labels:
+            lab = host.t.label[host.prim[v]][i]
+            if lab in host.side_labels:
                 continue     # a frame's side is as long as the frame, not a local scale
-            w = host.link[v][i][0]
-            lengths.append(_dist(host.pos[v], host.pos[w]))
-        if not lengths:
-            return host.t.unit
-        return float(np.median(lengths))
+            seen(v, host.link[v][i][0], lab)
+        scale = float(np.median(lengths)) if lengths else host.t.unit
+        return scale, (float(np.median(ratios)) if ratios else 1.0)
 
     def _aims(self) -> dict[int, Point]:
         """Where each new vertex is aimed: beside the old vertices it is glued to, else beside
@@ -119,10 +132,13 @@ class Solver:
             na, nb = a[0] in self.new_prim, b[0] in self.new_prim
             if na and nb:
                 parent[root(a[0])] = root(b[0])
-            elif na and b[0] not in host.pinned:
-                own[a[0]].append(host.pos[b[0]])
-            elif nb and a[0] not in host.pinned:
-                own[b[0]].append(host.pos[a[0]])
+            elif na != nb:
+                (v, i), old = (a, b[0]) if na else (b, a[0])
+                # A structure stood on a frame's side is not aimed at the ends of the stretch
+                # it stands on (a corner, maybe): it goes where the change's centre says.
+                if old not in host.pinned \
+                        and host.t.label[self.new_prim[v]][i] not in host.side_labels:
+                    own[v].append(host.pos[old])
         part: dict[int, list[Point]] = {}
         for v in sorted(self.new_prim):
             part.setdefault(root(v), []).extend(own[v])
@@ -199,7 +215,7 @@ class Solver:
         shape = (tuple(v in host.prim for v in free),
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
                         t.lengths[lab][2] if self.strict else None,
-                        lab in host.border_labels) for v, i, w, j, d, lab in edges))
+                        lab in host.side_labels) for v, i, w, j, d, lab in edges))
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
@@ -258,19 +274,20 @@ class Solver:
                 pv, pw = host.pos[v], host.pos[w]
                 mid[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
             else:
-                a = self._draw_range(lo, hi, SHRINK ** (self.J - 1))[0]
-                bb = self._draw_range(lo, hi, 1.0)[1]
+                c = self._draw_centre(lab)
+                a = _draw_range(lo, hi, c, SHRINK ** (self.J - 1))[0]
+                bb = _draw_range(lo, hi, c, 1.0)[1]
                 mid[2 * nF + e], half[2 * nF + e] = 0.5 * (a + bb), 0.5 * (bb - a)
         return mid, half
 
-    def _draw_range(self, lo: float, hi: float, f: float) -> tuple[float, float]:
-        """Where a new edge's target length is drawn: its class's range near the local scale
-        (times f), or the whole class when that misses it; when a shrunk range falls below
-        the class, its shortest length."""
-        a, bb = max(lo, 0.5 * self.scale * f), min(hi, 1.5 * self.scale * f)
-        if a > bb:
-            return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
-        return a, bb
+    def _draw_centre(self, lab: int) -> float:
+        """Around what length a new edge of label `lab` is drawn: its typical length in the
+        example, stretched as the neighbourhood is, so that the parts of a structure grown
+        in one move keep their proportions (a window's edges do not come out as long as a
+        tower's); else the local scale. A frame's sides have no typical length."""
+        typical = self.host.t.typical
+        ty = typical[lab] if typical and lab not in self.host.side_labels else math.nan
+        return self.stretch * ty if ty == ty else self.scale
 
     def _round(self, free, edges) -> "_Round":
         """What stays the same for every sample of a round, as arrays."""
@@ -287,9 +304,11 @@ class Solver:
                 base[2 * k], base[2 * k + 1] = p
         known = np.full(len(edges), np.nan)  # fixed lengths, and lengths of existing edges
         lo, hi = np.empty(len(edges)), np.empty(len(edges))
+        centre = np.empty(len(edges))
         tiles = []
         for e, (v, i, w, j, d, lab) in enumerate(edges):
             lo[e], hi[e], fixed, tile = t.lengths[lab]
+            centre[e] = self._draw_centre(lab)
             if fixed is not None:
                 known[e] = fixed
             elif v in host.prim and host.link[v][i] == (w, j):
@@ -297,7 +316,7 @@ class Solver:
                 known[e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
             if tile and fixed is None:
                 tiles.append((e, tile))
-        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, tiles)
+        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, centre, tiles)
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
@@ -310,8 +329,8 @@ class Solver:
         pos[1::2][rd.aimless[1::2]] = cy
         x[:nP] = np.where(rd.new, pos + noise, pos)
         draws = rng.random(len(rd.known))
-        a = np.maximum(rd.lo, 0.5 * self.scale * f)
-        bb = np.minimum(rd.hi, 1.5 * self.scale * f)
+        a = np.maximum(rd.lo, (1.0 - SPREAD) * rd.centre * f)
+        bb = np.minimum(rd.hi, (1.0 + SPREAD) * rd.centre * f)
         missed = a > bb        # as in _draw_range: the whole class, or its shortest length
         whole = missed if f == 1.0 else missed & (rd.hi < a)
         short = missed & ~whole
@@ -431,6 +450,7 @@ class _Round:
     drawn: np.ndarray
     lo: np.ndarray
     hi: np.ndarray
+    centre: np.ndarray       # where drawn lengths are centred
     tiles: list
 
 
@@ -509,6 +529,16 @@ def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
             b[2 * e + 1] += pv[1]
     b[2 * nE:] = fixed
     return b
+
+
+def _draw_range(lo: float, hi: float, c: float, f: float) -> tuple[float, float]:
+    """Where a new edge's target length is drawn: within (1 ± SPREAD)·c·f, inside its class's
+    range [lo, hi], or the whole class when that misses it; when a shrunk range falls below
+    the class, its shortest length."""
+    a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
+    if a > bb:
+        return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
+    return a, bb
 
 
 def _dist(p: Point, q: Point) -> float:

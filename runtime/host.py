@@ -49,6 +49,8 @@ class Tables:
     label_faces: tuple[tuple[str, str], ...]
     exterior: str
     unit: float
+    # Per edge label: the example's median length (nan when unknown): where new edges are drawn.
+    typical: tuple[float, ...] = ()
 
     @functools.cached_property
     def clearance(self) -> float:
@@ -93,7 +95,8 @@ class Tables:
         return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
                       tuple(outer), tuple(lengths), tuple(l.name for l in labels),
                       tuple(l.cls for l in labels), tuple((l.left, l.right) for l in labels),
-                      header.exterior, unit)
+                      header.exterior, unit,
+                      tuple(math.nan if l.typical is None else l.typical for l in labels))
 
 
 def grid_cell(t: Tables) -> float:
@@ -143,6 +146,7 @@ class Host:
         self.frame = None                           # the placed Frame, when there is one
         self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
         self.border_labels: frozenset[int] = frozenset()
+        self.side_labels: frozenset[int] = frozenset()      # the frame's bare sides
         self.frame_face: str | None = None          # the face just inside the frame
 
     # --- reading ----------------------------------------------------------------------------

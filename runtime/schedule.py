@@ -64,6 +64,10 @@ class Schedule:
         both = (not spo) if bidirectional is None else bidirectional
         rings = grammar.rings
         connected = grammar.header.options.connected
+        # In a frame, structures stand on it: no rule may cut a part off to float in the
+        # space (a roof lifted off its tower), though a starter may still make a part the
+        # example has free-standing (a window).
+        whole = connected or grammar.header.frame is not None
         by_level: dict[int, list[tuple[DirectedRule, float]]] = {}
         opening = []
         for rule in grammar.rules:
@@ -75,7 +79,7 @@ class Schedule:
             # Forward only, a starter is used to create its component (rhs ∅ → lhs).
             dirs = (True, False) if both else ((False,) if rule.is_starter else (True,))
             for fwd in dirs:
-                if connected and _splits(rule, fwd):
+                if whole and not rule.is_starter and _splits(rule, fwd):
                     continue
                 by_level.setdefault(rule.priority, []).append(
                     (DirectedRule.build(rule, fwd, rings), float(rule.weight)))

@@ -69,7 +69,7 @@ def headers(draw) -> Header:
     class_names = [c.name for c in classes] + [DEFAULT_CLASS]
     labels = tuple(EdgeLabel(n, draw(st.sampled_from(sides)), draw(st.sampled_from(sides)),
                              draw(angles), draw(st.sampled_from(class_names)),
-                             draw(st.none() | positive))
+                             draw(st.none() | positive), draw(st.none() | positive))
                    for n in draw(unique(names, 1, 4)))
     if any(l.cls == DEFAULT_CLASS for l in labels) and DEFAULT_CLASS not in \
             {c.name for c in classes}:
