@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+
+from .algorithms.components import component_labels
 
 _CHUNK = 1 << 20   # point×segment pairs per numpy batch, to bound memory
 
@@ -75,9 +75,7 @@ def compute_faces(vertices: np.ndarray, ends: np.ndarray) -> Faces:
     area = np.bincount(cycle, weights=(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]) / 2.0,
                        minlength=cycles)
 
-    graph = coo_matrix((np.ones(m), (ends[:, 0], ends[:, 1])),
-                       shape=(len(vertices), len(vertices)))
-    _, component = connected_components(graph, directed=False)
+    _, component = component_labels(len(vertices), ends)
     cycle_comp = np.zeros(cycles, dtype=np.int64)
     cycle_comp[cycle] = component[origin]
     # Each component's outer boundary is its most negative cycle (minus the sum of the rest).

@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+
+from grammar_lang.algorithms.components import component_labels
 
 UNBOUNDED = 0
 
@@ -90,9 +90,7 @@ def compute_faces(xy: np.ndarray, edges: np.ndarray) -> Faces:
         cross = q[src, 0] * q[dst, 1] - q[dst, 0] * q[src, 1]
     area = np.bincount(cycle_of, weights=cross, minlength=len(cycles)) / 2.0 if m else np.zeros(0)
 
-    graph = coo_matrix((np.ones(m), (edges[:, 0], edges[:, 1])), shape=(n, n))
-    _, component = connected_components(graph, directed=False)
-    n_comp = int(component.max()) + 1 if n else 0
+    n_comp, component = component_labels(n, edges)
     outer = np.full(n_comp, -1, dtype=np.int64)
     for c, cyc in enumerate(cycles):
         k = component[src[cyc[0]]]

@@ -30,6 +30,8 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from grammar_lang.algorithms.components import DisjointSet
+
 from .host import Host, Point
 from .rejections import Rejection
 from .rewrite import Change
@@ -106,29 +108,22 @@ class Solver:
         those its part of the new side is glued to (so the parts of a spliced side go to their
         own places, near the match, not all to its middle), else the change's centre."""
         host = self.host
-        parent = {v: v for v in self.new_prim}
-
-        def root(v):
-            while parent[v] != v:
-                parent[v] = parent[parent[v]]
-                v = parent[v]
-            return v
-
+        parts = DisjointSet(self.new_prim)
         own: dict[int, list[Point]] = {v: [] for v in self.new_prim}
         for a, b in self.change.glue:
             na, nb = a[0] in self.new_prim, b[0] in self.new_prim
             if na and nb:
-                parent[root(a[0])] = root(b[0])
+                parts.union(a[0], b[0])
             elif na and b[0] not in host.pinned:
                 own[a[0]].append(host.pos[b[0]])
             elif nb and a[0] not in host.pinned:
                 own[b[0]].append(host.pos[a[0]])
         part: dict[int, list[Point]] = {}
         for v in sorted(self.new_prim):
-            part.setdefault(root(v), []).extend(own[v])
+            part.setdefault(parts.find(v), []).extend(own[v])
         aim = {}
         for v in self.new_prim:
-            pts = own[v] or part[root(v)]
+            pts = own[v] or part[parts.find(v)]
             if pts:
                 aim[v] = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
         return aim

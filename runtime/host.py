@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from grammar_lang.algorithms.components import glued_components
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
 
@@ -307,22 +308,8 @@ class Host:
         return Drawing(verts, tuple(edges), dict(meta or {}))
 
     def components(self) -> list[list[int]]:
-        seen: set[int] = set()
-        out = []
-        for v in sorted(self.prim):
-            if v in seen:
-                continue
-            comp, stack = [], [v]
-            seen.add(v)
-            while stack:
-                x = stack.pop()
-                comp.append(x)
-                for w in self.neighbours(x):
-                    if w not in seen:
-                        seen.add(w)
-                        stack.append(w)
-            out.append(sorted(comp))
-        return out
+        """Vertex sets of the connected components, in order of their smallest vertex."""
+        return glued_components(self.prim, self.edges())
 
     def check_consistency(self) -> list[str]:
         """Recount every index from scratch; the list of disagreements (empty when sound)."""
