@@ -48,3 +48,34 @@ def test_disjoint_set_roots_are_smallest_members_and_items_may_be_any_order():
     ds.union(5, 1)
     assert ds.find(9) == 3 and ds.find(5) == 1
     assert ds.groups() == [[5, 1], [3, 9]]           # members in the order they were added
+
+
+points = st.lists(st.tuples(st.integers(-50, 50), st.integers(-50, 50)), min_size=3, max_size=30,
+                  unique=True)
+
+
+@given(points)
+@settings(max_examples=100, deadline=None)
+def test_face_walk_on_a_triangulation_obeys_euler(pts):
+    from scipy.spatial import Delaunay, QhullError
+
+    from grammar_lang.algorithms.faces import boundary_cycles, half_ends, next_in_face
+    xy = np.array(pts, dtype=float)
+    try:
+        tri = Delaunay(xy)
+    except QhullError:                               # all points on a line
+        return
+    edges = sorted({tuple(sorted((int(s[i]), int(s[(i + 1) % 3])))) for s in tri.simplices
+                    for i in range(3)})
+    edges = np.array(edges, dtype=np.int64)
+    nxt = next_in_face(xy, edges)
+    assert sorted(nxt.tolist()) == list(range(2 * len(edges)))      # a permutation
+    src, dst = half_ends(edges)
+    assert (src[nxt] == dst).all()                   # the walk continues where it arrived
+    cycle_of, cycles = boundary_cycles(xy, edges)
+    assert sorted(h for c in cycles for h in c) == list(range(2 * len(edges)))
+    assert all(cycle_of[h] == k for k, c in enumerate(cycles) for h in c)
+    used = len(np.unique(edges))
+    # One connected triangulation: V − E + F = 2, the outer face counted.
+    assert used - len(edges) + len(cycles) == 2
+    assert len(cycles) == len(tri.simplices) + 1
