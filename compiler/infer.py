@@ -530,9 +530,7 @@ def header(ex: Example, complete: bool, frame: Frame | None = None) -> Header:
     except OSError:
         pass
     return Header(source=ex.path, source_hash=digest, compiler_version=__version__,
-                  exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
-                  labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
-                  decorations=ex.decorations, complete=complete, frame=frame)
+                  vocabulary=ex.vocabulary, options=ex.options, decorations=ex.decorations, complete=complete, frame=frame)
 
 
 def example_slots(ex: Example) -> list[tuple[int, int, int, int]]:

@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from grammar_lang.algorithms.components import glued_components
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
+from grammar_lang.vocabulary import Vocabular, Vocabulary
 
 from .drawing import DEdge, Drawing, DVertex
 from .spatial import Grid
@@ -34,8 +35,9 @@ LEVEL_TOL = 1e-7
 
 
 @dataclass(frozen=True)
-class Tables:
-    """What the header says about each primitive slot, precomputed as plain tuples."""
+class Tables(Vocabular):
+    """What the header says about each primitive slot, precomputed as plain tuples, with the
+    header's vocabulary (its unit 1 where the header gives none)."""
 
     rings: tuple[tuple[int, ...], ...]
     direction: tuple[tuple[Point, ...], ...]   # unit vector pointing away from the vertex
@@ -45,11 +47,9 @@ class Tables:
     outer: tuple[str | None, ...]              # face label seen just below direction 180°
     # Per edge label: (min, max, fixed or None, tile or None)
     lengths: tuple[tuple[float, float, float | None, float | None], ...]
-    label_names: tuple[str, ...]
     label_class: tuple[str, ...]
     label_faces: tuple[tuple[str, str], ...]
-    exterior: str
-    unit: float
+    vocabulary: Vocabulary
 
     @functools.cached_property
     def clearance(self) -> float:
@@ -92,9 +92,9 @@ class Tables:
             fixed = lab.length if (c.rigid and lab.length) else c.fixed
             lengths.append((float(c.min_length), float(c.max_length), fixed, c.tile))
         return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
-                      tuple(outer), tuple(lengths), tuple(l.name for l in labels),
-                      tuple(l.cls for l in labels), tuple((l.left, l.right) for l in labels),
-                      header.exterior, unit)
+                      tuple(outer), tuple(lengths), tuple(l.cls for l in labels),
+                      tuple((l.left, l.right) for l in labels),
+                      replace(header.vocabulary, unit=unit))
 
 
 def grid_cell(t: Tables) -> float:

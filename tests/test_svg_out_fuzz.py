@@ -20,6 +20,7 @@ from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_parser import parse_ggr
 from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration, EdgeClass
+from grammar_lang.vocabulary import Vocabulary
 from runtime.drawing import DEdge, Drawing, DVertex
 from runtime.svg_out import render_svg
 
@@ -71,8 +72,8 @@ def test_hostile_names_and_raw_decorations_stay_inside_their_attributes(
              Decoration("edge", "*", (("stroke", stroke), ("image", image))),
              Decoration("vertex", "*", (("marker", marker), ("fill", fill), ("stroke", stroke),
                                         ("image", image))))
-    header = Header(source=name, exterior=exterior, face_labels=(label, exterior),
-                    classes=(EdgeClass(cls, 0.1, 10.0),), decorations=decos)
+    vocabulary = Vocabulary(exterior, (label, exterior), (EdgeClass(cls, 0.1, 10.0),))
+    header = Header(source=name, vocabulary=vocabulary, decorations=decos)
     svg = render_svg(square(label, exterior, cls), header, base=base)
     check_structure(svg, {label, exterior}, {cls})
 
