@@ -79,3 +79,32 @@ def test_face_walk_on_a_triangulation_obeys_euler(pts):
     # One connected triangulation: V − E + F = 2, the outer face counted.
     assert used - len(edges) + len(cycles) == 2
     assert len(cycles) == len(tri.simplices) + 1
+
+
+def test_join_interface_glues_each_chain_end_to_end():
+    from grammar_lang.algorithms.dpo import join_interface
+    a, b, c0, c1, c2 = (10, 0), (11, 1), (20, 0), (21, 1), (22, 0)
+    # Point 0: new slot a to context c0. Points 1–2: a wire between contexts c1 and c2.
+    # Point 3: new slot b, open outside.
+    glue, opened = join_interface([c0, c1, c2, None], [a, (-1, 0), (-1, 1), b])
+    assert glue == [(a, c0), (c1, c2)] and opened == [b]
+    # A wire with one open end leaves the other context open.
+    assert join_interface([None, c1], [(-1, 0), (-1, 1)]) == ([], [c1])
+    # A host edge between interface points 0 and 1 (compiler): a's chain runs through it and
+    # the wire 1–2 on to context c2; a bare loop (wire 3–4 closed by edge 4–3) vanishes.
+    glue, opened = join_interface([1, 0, c2, 4, 3], [a, (-1, 0), (-1, 1), (-2, 0), (-2, 1)])
+    assert glue == [(a, c2)] and opened == []
+
+
+def test_anchored_matches_walk_from_each_root_and_ask_the_hook():
+    from grammar_lang.algorithms.matching import anchored_matches, walk_plans
+    # Pattern: a path p0 -(slot 0/1)- p1; host: a path of three vertices of alternating kinds.
+    partner = {(0, 0): (1, 1), (1, 1): (0, 0)}
+    plans = walk_plans([0, 1], partner)
+    assert plans == (((0, 0, 1, 1),), ((1, 1, 0, 0),))
+    link = {0: [(1, 1), None], 1: [(2, 1), (0, 0)], 2: [None, (1, 0)]}
+    prim = {0: 7, 1: 7, 2: 7}
+    found = list(anchored_matches(link, prim, [7, 7], plans, [(0, 0), (0, 1), (0, 2)]))
+    assert found == [[0, 1], [1, 2]]
+    assert list(anchored_matches(link, prim, [7, 7], plans, [(0, 0), (0, 1)],
+                                 lambda img: img[0] != 0)) == [[1, 2]]
