@@ -36,7 +36,7 @@ from .canon import canonical_key, split
 from .framing import frame_rules, frame_starters
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
-from .matching import Match, Matcher, Piece
+from .boundary_match import Match, Matcher, Piece
 from .occurrence import Host, Pattern, contains
 from .pruning import TurnAnalysis
 
