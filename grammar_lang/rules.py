@@ -61,7 +61,7 @@ class Grammar:
 
     @property
     def is_free(self) -> bool:
-        """Whether this grammar holds hand-written productions (run by runtime.free_engine)."""
+        """Whether this grammar holds hand-written productions (run by runtime.engine.free_engine)."""
         return bool(self.productions) or self.start is not None
 
     @property

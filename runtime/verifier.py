@@ -31,8 +31,8 @@ from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration
 from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabular, Vocabulary
 
-from .drawing import Drawing, load_drawing
-from .faces import UNBOUNDED, compute_faces
+from .output.drawing import Drawing, load_drawing
+from .geometry.faces import UNBOUNDED, compute_faces
 
 # "One exact direction": directions agree to this many degrees, plus what rounding the
 # coordinates to 6 decimals (as gg-drawing/1 files do) can move an edge's end.

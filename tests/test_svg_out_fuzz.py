@@ -21,8 +21,8 @@ from grammar_lang.ggr_parser import parse_ggr
 from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration, EdgeClass
 from grammar_lang.vocabulary import Vocabulary
-from runtime.drawing import DEdge, Drawing, DVertex
-from runtime.svg_out import render_svg
+from runtime.output.drawing import DEdge, Drawing, DVertex
+from runtime.output.svg_out import render_svg
 
 SVG = "{http://www.w3.org/2000/svg}"
 XLINK = "{http://www.w3.org/1999/xlink}href"
@@ -132,7 +132,7 @@ def test_the_reported_injections_are_refused():
 def test_gg_labels_and_classes_stay_inside_their_attributes(tmp_path_factory, label, cls):
     """From a `.gg` file through the loader and the writer."""
     from grammar_lang.loader import load_example
-    from runtime.drawing import drawing_from_example
+    from runtime.output.drawing import drawing_from_example
     src = (f'example "{label}"\nclass "{cls}" {{ }}\n'
            f'polygon "{label}" (0, 0) (10, 0) (10, 10) (0, 10) class "{cls}"\n')
     path = Path(tmp_path_factory.mktemp("gg")) / "x.gg"

@@ -15,8 +15,8 @@ from shapely.ops import polylabel
 from conftest import CORPUS, corpus_names
 from grammar_lang.loader import load_example
 from grammar_lang.rules import Header
-from runtime.drawing import DEdge, Drawing, DVertex, drawing_from_example, parse_drawing
-from runtime.faces import compute_faces
+from runtime.output.drawing import DEdge, Drawing, DVertex, drawing_from_example, parse_drawing
+from runtime.geometry.faces import compute_faces
 from runtime.verifier import as_reference, check_drawing
 
 NAMES = corpus_names()
@@ -631,7 +631,7 @@ def messy_drawings(draw):
 @settings(max_examples=300, deadline=None)
 @given(messy_drawings())
 def test_any_drawing_gets_an_answer_not_a_crash(case):
-    from runtime.svg_out import render_svg
+    from runtime.output.svg_out import render_svg
     from runtime.verifier import KINDS
     name, d = case
     failures = check_drawing(example(name), d)

@@ -7,7 +7,7 @@ match). Inside it lies the replacement's end: a slot of a new vertex, or one end
 whose other end is another interface point. Each maximal chain context–inside–context–… is
 glued end to end; a chain with one end only leaves that slot open; a chain with none (a bare
 loop) vanishes. Written once for the compiler's verifier (compiler.apply) and the runtime's
-rewriting (runtime.rewrite); how contexts are found (the dangling condition, SPO, wires of the
+rewriting (runtime.engine.rewrite); how contexts are found (the dangling condition, SPO, wires of the
 matched side) and how the gluing is applied (the runtime's undo journal and geometry) stay with
 each caller.
 """

@@ -1,6 +1,6 @@
 """Walking the faces of a straight-line drawing: the rotation system from the geometry, then
 its boundary cycles. Written once for the compiler's planarisation (grammar_lang.planar_faces)
-and the runtime's face check (runtime.faces); each adds its own reading of the cycles.
+and the runtime's face check (runtime.geometry.faces); each adds its own reading of the cycles.
 
 Half-edge `2e` walks edge `e` from `edges[e, 0]` to `edges[e, 1]`, half-edge `2e + 1` back;
 every half-edge has its face on its left. Around each vertex the outgoing half-edges are sorted

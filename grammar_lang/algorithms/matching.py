@@ -1,5 +1,5 @@
 """Anchored matching of a rule side in a host graph (paper §6.1), for the compiler's
-verification (compiler.occurrence) and the runtime's engine (runtime.matching).
+verification (compiler.occurrence) and the runtime's engine (runtime.engine.matching).
 
 A vertex's primitive fixes its whole ring, so once one pattern vertex is mapped to a host
 vertex of the same primitive, following the pattern's glued slots through the host's links maps

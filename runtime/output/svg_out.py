@@ -27,7 +27,7 @@ import numpy as np
 from grammar_lang.fileio import atomic_write
 
 from .drawing import Drawing
-from .faces import UNBOUNDED, compute_faces, cycle_points
+from ..geometry.faces import UNBOUNDED, compute_faces, cycle_points
 
 # Colour-blind-friendly fills (light) and strokes (dark), used in order.
 FILL_PALETTE = ("#a6cee3", "#b2df8a", "#fdbf6f", "#cab2d6", "#fb9a99", "#ffff99", "#8dd3c7",
@@ -138,7 +138,7 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
     """The drawing as SVG text. `reference` (an Example, Header or Grammar) supplies the
     exterior's name, the order of face labels and edge classes, the unit and decorations;
     `base` is the folder the SVG will be written to, so image links can be relative."""
-    from .verifier import as_reference
+    from ..verifier import as_reference
 
     cv = _canvas(drawing, as_reference(reference) if reference is not None else None, base)
     vb, k = cv.vb, SCREEN / max(cv.vb[2], cv.vb[3])
@@ -266,7 +266,7 @@ def _edges_group(cv: _Canvas) -> list[str]:
 
 def _vertices_group(cv: _Canvas) -> list[str]:
     """Vertex images and markers, where decorations ask for them."""
-    from .verifier import vertex_primitives
+    from ..verifier import vertex_primitives
 
     vertex_decos = decorations(cv.ref, "vertex")
     if not vertex_decos:

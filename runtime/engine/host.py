@@ -24,8 +24,8 @@ from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
 from grammar_lang.vocabulary import Vocabular, Vocabulary
 
-from .drawing import DEdge, Drawing, DVertex
-from .spatial import Grid
+from ..output.drawing import DEdge, Drawing, DVertex
+from ..geometry.spatial import Grid
 
 Slot = tuple[int, int]
 Point = tuple[float, float]
@@ -140,7 +140,7 @@ class Host:
         self.n_edges = 0
         self.n_open = 0
         self.journal: list[tuple] | None = None
-        self.pinned: frozenset[int] = frozenset()   # the frame's corners (runtime/framing.py)
+        self.pinned: frozenset[int] = frozenset()   # the frame's corners (runtime/geometry/framing.py)
         self.frame = None                           # the placed Frame, when there is one
         self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
         self.border_labels: frozenset[int] = frozenset()

@@ -32,9 +32,9 @@ import numpy as np
 
 from grammar_lang.algorithms.components import DisjointSet
 
-from .host import Host, Point
-from .rejections import Rejection
-from .rewrite import Change
+from ..engine.host import Host, Point
+from ..engine.rejections import Rejection
+from ..engine.rewrite import Change
 from .spatial import seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
@@ -524,7 +524,7 @@ def place_side(host: Host, side, rng: np.random.Generator,
     for which `tries` rounds of samples find no placement is placed keeping only the
     directions and positive lengths (no class ranges, fixed lengths, tiles or crossings). `host` must
     be empty; it is left unchanged. ValueError when not even that is possible."""
-    from .rewrite import Change
+    from ..engine.rewrite import Change
     assert len(host) == 0, "place_side draws on an empty host"
     out, strict = [], True
     for comp in side.components():
