@@ -26,8 +26,8 @@ from grammar_lang.blas import pin_blas_threads  # noqa: E402
 pin_blas_threads()
 
 from grammar_lang.diagnostics import UserError  # noqa: E402
-from runtime.costs import SizeCost  # noqa: E402
-from runtime.generate import Engine  # noqa: E402
+from runtime.engine.costs import SizeCost  # noqa: E402
+from runtime.engine.generate import Engine  # noqa: E402
 from runtime.verifier import check_drawing  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus" / "examples"

@@ -22,8 +22,8 @@ from grammar_lang.blas import pin_blas_threads  # noqa: E402
 
 pin_blas_threads()
 
-from runtime.costs import SizeCost  # noqa: E402
-from runtime.generate import Engine  # noqa: E402
+from runtime.engine.costs import SizeCost  # noqa: E402
+from runtime.engine.generate import Engine  # noqa: E402
 from report.ggrun import compile_example  # noqa: E402
 from runtime.run_cmd import load_grammar  # noqa: E402
 

@@ -25,7 +25,7 @@ sys.path.insert(0, str(ROOT))
 
 from grammar_lang.blas import pin_blas_threads  # noqa: E402
 from grammar_lang.ggr_parser import load_ggr  # noqa: E402
-from runtime.free_engine import FreeEngine  # noqa: E402
+from runtime.engine.free_engine import FreeEngine  # noqa: E402
 
 # example, the seed's step count, the seed tool's time here in seconds (None: not measured)
 TASKS = [("koch", 192, 5.5), ("honda-tree", 200, 2.9), ("facade", 116, 4.4),

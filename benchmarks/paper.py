@@ -44,7 +44,7 @@ def measure(name: str, steps: int | None) -> dict:
 
     from compiler.infer import compile_example
     from grammar_lang.loader import load_example
-    from runtime.generate import Engine
+    from runtime.engine.generate import Engine
 
     n, seed, *_ = PAPER[name]
     t0 = time.perf_counter()

@@ -22,8 +22,8 @@ from grammar_lang.blas import pin_blas_threads  # noqa: E402
 pin_blas_threads()
 
 from grammar_lang.loader import load_example  # noqa: E402
-from runtime.drawing import DEdge, Drawing, DVertex, drawing_from_example  # noqa: E402
-from runtime.svg_out import render_svg  # noqa: E402
+from runtime.output.drawing import DEdge, Drawing, DVertex, drawing_from_example  # noqa: E402
+from runtime.output.svg_out import render_svg  # noqa: E402
 from runtime.verifier import check_drawing  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus" / "examples"

@@ -4,11 +4,13 @@ The i-th open slot of L and of R are the same interface point. Cutting L out lea
 interface point, whatever L's slot was glued to: a slot of the context, or another of L's own
 open slots (an edge between two interface points). R is glued in by joining each interface
 point's R end to that. R's bare edges (wires) join their two interface points straight through.
+The chains so formed are the kernel's (grammar_lang.algorithms.dpo).
 """
 
 from __future__ import annotations
 
 from grammar_lang import boundary as bd
+from grammar_lang.algorithms.dpo import join_interface
 from grammar_lang.graph import Side
 
 from .gluing import Graph, items_to_gaps
@@ -33,63 +35,18 @@ def wired_pairs(rhs: Side) -> tuple[tuple[int, int], ...]:
 def apply(lhs: Side, rhs: Side, img: list[int], host: Host) -> None:
     """Replace the match `img` of lhs in host by rhs, in place."""
     l_open = lhs.open_slots()
-    r_open = rhs.open_slots()
     where = {(v, i): k for k, (v, i) in enumerate(l_open)}
     inv = {h: v for v, h in enumerate(img)}
-    ext: list = []
+    contexts: list = []            # per interface point: open, a context slot, or another point
     for v, i in l_open:
-        q = host.part[img[v]].get(i)
-        if q is None:
-            ext.append(None)
-        elif q[0] in inv and (inv[q[0]], q[1]) in where:
-            ext.append(("r", where[(inv[q[0]], q[1])]))
-        else:
-            ext.append(("c", q))
+        q = host.part[img[v]][i]
+        inside = q is not None and q[0] in inv and (inv[q[0]], q[1]) in where
+        contexts.append(where[(inv[q[0]], q[1])] if inside else q)
     for h in img:
         host.remove_vertex(h)
     new = [host.add_vertex(p) for p in rhs.vertices]
     for v, i, w, j in rhs.edges:
         host.glue((new[v], i), (new[w], j))
-    # Link graph over interface ends: R ends ("r", k) and context slots ("c", slot).
-    links: dict = {}
-
-    def link(a, b) -> None:
-        links.setdefault(a, []).append(b)
-        links.setdefault(b, []).append(a)
-
-    wire_pos: dict[int, list[int]] = {}
-    for k, x in enumerate(ext):
-        if x is None:
-            continue
-        if x[0] == "c" or k < x[1]:
-            link(("r", k), x)
-    for k, (v, i) in enumerate(r_open):
-        if v < 0:
-            wire_pos.setdefault(-1 - v, []).append(k)
-    for ks in wire_pos.values():
-        if len(ks) == 2:
-            link(("r", ks[0]), ("r", ks[1]))
-
-    def slot_of(node):
-        if node[0] == "c":
-            return node[1]
-        v, i = r_open[node[1]]
-        return None if v < 0 else (new[v], i)
-
-    seen: set = set()
-    for start in sorted(links, key=repr):
-        if start in seen or slot_of(start) is None:
-            continue
-        prev, cur = None, start
-        seen.add(cur)
-        while True:
-            nxt = [n for n in links.get(cur, ()) if n != prev]
-            if not nxt:
-                break
-            prev, cur = cur, nxt[0]
-            seen.add(cur)
-            if slot_of(cur) is not None:
-                break
-        end = slot_of(cur)
-        if end is not None and cur != start:
-            host.glue(slot_of(start), end)
+    ends = [(v, i) if v < 0 else (new[v], i) for v, i in rhs.open_slots()]
+    for a, b in join_interface(contexts, ends)[0]:
+        host.glue(a, b)

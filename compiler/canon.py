@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from grammar_lang.algorithms.components import glued_components
+
 from .gluing import Edge, Graph
 
 Key = tuple
@@ -70,28 +72,9 @@ def canonical_key(g: Graph, ring_len: Sequence[int]) -> Key:
     return best
 
 
-def components(n: int, edges: Sequence[Edge]) -> list[list[int]]:
-    parent = list(range(n))
-
-    def find(x: int) -> int:
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    for v, _, w, _ in edges:
-        a, b = find(v), find(w)
-        if a != b:
-            parent[max(a, b)] = min(a, b)
-    groups: dict[int, list[int]] = {}
-    for v in range(n):
-        groups.setdefault(find(v), []).append(v)
-    return [groups[k] for k in sorted(groups)]
-
-
 def split(verts: Sequence[int], edges: Sequence[Edge]) -> list[Graph]:
     """The connected components of a complete (boundary-free) graph, each renumbered from 0."""
-    comps = components(len(verts), edges)
+    comps = glued_components(range(len(verts)), edges)
     where: dict[int, tuple[int, int]] = {}      # vertex → (its component, its new number)
     for c, comp in enumerate(comps):
         for k, v in enumerate(comp):

@@ -15,12 +15,13 @@ the side runs on through them, and a rule's boundary keeps the border half-edges
 from __future__ import annotations
 
 from grammar_lang import boundary as bd
+from grammar_lang.algorithms.components import glued_components
 from grammar_lang.frame import border_labels, border_primitives, corner_primitives
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Rule
 
 from .apply import side_graph
-from .canon import canonical_key, components
+from .canon import canonical_key
 
 
 def frame_rules(rules: tuple[Rule, ...], example, own: set) -> tuple[tuple[Rule, ...], int]:
@@ -66,7 +67,7 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
             and bd.label_of(rings[e[0]][e[1]]) not in bare]
     ring_len = [len(r) for r in prim_rings]
     rules, seen = [], set()
-    for comp in components(len(prims), keep):
+    for comp in glued_components(range(len(prims)), keep):
         if prims[comp[0]] in corners:
             continue
         side = _component_side(comp, keep, prims, prim_rings)

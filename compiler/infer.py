@@ -36,7 +36,7 @@ from .canon import canonical_key, split
 from .framing import frame_rules, frame_starters
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
-from .matching import Match, Matcher, Piece
+from .boundary_match import Match, Matcher, Piece
 from .occurrence import Host, Pattern, contains
 from .pruning import TurnAnalysis
 
@@ -530,9 +530,7 @@ def header(ex: Example, complete: bool, frame: Frame | None = None) -> Header:
     except OSError:
         pass
     return Header(source=ex.path, source_hash=digest, compiler_version=__version__,
-                  exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
-                  labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
-                  decorations=ex.decorations, complete=complete, frame=frame)
+                  vocabulary=ex.vocabulary, options=ex.options, decorations=ex.decorations, complete=complete, frame=frame)
 
 
 def example_slots(ex: Example) -> list[tuple[int, int, int, int]]:

@@ -7,6 +7,9 @@ holds by construction. Open slots of L glued to each other in G are fine, except
 right side joins them by bare wires into a closed loop with no vertex: that is no graph, and no
 starter builds it back, so such a placement is not a match (else the complete hollow house
 "reduces" to ∅ through such a loop and never gets a starter).
+
+The walk is the kernel's (grammar_lang.algorithms.matching); the bare-loop test is the
+feasibility hook this module gives it.
 """
 
 from __future__ import annotations
@@ -14,45 +17,33 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterator, Sequence
 
+from grammar_lang.algorithms.matching import Step, anchored_matches, walk_plans
+
 from .gluing import Edge, Graph
-
-Plan = tuple[tuple[int, int, int, int], ...]   # (known vertex u, slot i, new vertex w, slot j)
-
 
 @dataclass(frozen=True)
 class Pattern:
     """A connected graph prepared for matching from each of its vertices."""
 
     graph: Graph
-    plans: tuple[Plan, ...]                    # a spanning walk from each root vertex
-    checks: tuple[Edge, ...]                   # every edge, checked once all vertices are placed
+    plans: tuple[tuple[Step, ...], ...]        # the walk from each anchor vertex (kernel)
     opens: tuple[tuple[int, int], ...] = ()    # open slots, in boundary order
     wires: tuple[tuple[int, int], ...] = ()    # open-slot index pairs the right side wires together
 
     @staticmethod
     def of(g: Graph, wires: Sequence[tuple[int, int]] = ()) -> "Pattern":
-        part: list[dict[int, tuple[int, int]]] = [{} for _ in g.verts]
+        partner = {}
         for v, i, w, j in g.edges:
-            part[v][i] = (w, j)
-            part[w][j] = (v, i)
-        plans = []
-        for root in range(len(g.verts)):
-            seen = {root}
-            order = [root]
-            plan = []
-            k = 0
-            while k < len(order):
-                u = order[k]
-                k += 1
-                for i in sorted(part[u]):
-                    w, j = part[u][i]
-                    if w not in seen:
-                        seen.add(w)
-                        order.append(w)
-                        plan.append((u, i, w, j))
-            plans.append(tuple(plan))
-        return Pattern(g, tuple(plans), g.edges, tuple(slot for slot, _ in g.gaps),
-                       tuple(sorted(wires)))
+            partner[(v, i)], partner[(w, j)] = (w, j), (v, i)
+        return Pattern(g, walk_plans(range(len(g.verts)), partner),
+                       tuple(slot for slot, _ in g.gaps), tuple(sorted(wires)))
+
+
+class Slots(dict):
+    """A host vertex's glued slots: slot → partner; an open slot reads as None."""
+
+    def __missing__(self, slot: int) -> None:
+        return None
 
 
 class Host:
@@ -60,7 +51,7 @@ class Host:
 
     def __init__(self, verts: Sequence[int], edges: Sequence[Edge]):
         self.verts: list[int | None] = list(verts)
-        self.part: list[dict[int, tuple[int, int]]] = [{} for _ in verts]
+        self.part: list[Slots] = [Slots() for _ in verts]
         for v, i, w, j in edges:
             self.part[v][i] = (w, j)
             self.part[w][j] = (v, i)
@@ -70,7 +61,7 @@ class Host:
 
     def add_vertex(self, p: int) -> int:
         self.verts.append(p)
-        self.part.append({})
+        self.part.append(Slots())
         self.by_prim.setdefault(p, set()).add(len(self.verts) - 1)
         return len(self.verts) - 1
 
@@ -78,7 +69,7 @@ class Host:
         for i, (w, j) in list(self.part[v].items()):
             if w != v:
                 self.part[w].pop(j, None)
-        self.part[v] = {}
+        self.part[v] = Slots()
         self.by_prim[self.verts[v]].discard(v)
         self.verts[v] = None
 
@@ -100,25 +91,8 @@ def matches(pat: Pattern, host: Host, anchors: Sequence[int] | None = None
     else:
         roots = [(r, h) for h in anchors for r in range(len(g.verts))
                  if host.verts[h] == g.verts[r]]
-    for r, h in roots:
-        img = [-1] * len(g.verts)
-        img[r] = h
-        used = {h}
-        ok = True
-        for u, i, w, j in pat.plans[r]:
-            q = host.part[img[u]].get(i)
-            if q is None or q[1] != j or q[0] in used or host.verts[q[0]] != g.verts[w]:
-                ok = False
-                break
-            img[w] = q[0]
-            used.add(q[0])
-        if not ok:
-            continue
-        if not all(host.part[img[v]].get(i) == (img[w], j) for v, i, w, j in pat.checks):
-            continue
-        if pat.wires and _bare_loop(pat, host, img):
-            continue
-        yield img
+    feasible = (lambda img: not _bare_loop(pat, host, img)) if pat.wires else None
+    yield from anchored_matches(host.part, host.verts, g.verts, pat.plans, roots, feasible)
 
 
 def _bare_loop(pat: Pattern, host: Host, img: list[int]) -> bool:

@@ -39,6 +39,55 @@ class VerifyResult:
         return self.stopped == "graph cap"
 
 
+class _SizeBound:
+    """How many vertices a partial graph still needs at least, from its open half-edges: those
+    of token t beyond the open ones of token t̄ must each meet a new vertex's t̄ slot."""
+
+    def __init__(self, rings: Sequence[Sequence[int]], prims: Sequence[Graph], max_prims: int):
+        self.rings, self.max_prims = rings, max_prims
+        self.mult: dict[int, int] = {}
+        for r in rings:
+            for t in set(r):
+                self.mult[t] = max(self.mult.get(t, 0), r.count(t))
+        self.widest = max((len(r) for r in rings), default=1) or 1
+        self.prim_open = [self.open_counts(p) for p in prims]
+
+    def open_counts(self, g: Graph) -> dict[int, int]:
+        count: dict[int, int] = {}
+        for (v, i), _ in g.gaps:
+            t = self.rings[g.verts[v]][i]
+            count[t] = count.get(t, 0) + 1
+        return count
+
+    def too_big(self, n: int, count: dict[int, int]) -> bool:
+        """Whether `n` vertices with these open half-edges need more than `max_prims`."""
+        need, total = 0, 0
+        for t, c in count.items():
+            extra = c - count.get(t ^ 1, 0)
+            if extra > 0:
+                if t ^ 1 not in self.mult:
+                    return True
+                need = max(need, -(-extra // self.mult[t ^ 1]))
+                total += extra
+        return n + max(need, -(-total // self.widest)) > self.max_prims
+
+    def rejects(self, g: Graph) -> bool:
+        return len(g.verts) > self.max_prims or self.too_big(len(g.verts), self.open_counts(g))
+
+    def admit_for(self, g: Graph) -> Callable[[Slot, int, Slot], bool]:
+        """The bound applied to a branch gluing before the child is built."""
+        base, n, rings = self.open_counts(g), len(g.verts), self.rings
+
+        def admit(s: Slot, b: int, t: Slot) -> bool:
+            count = dict(base)
+            for tok, c in self.prim_open[b].items():
+                count[tok] = count.get(tok, 0) + c
+            for tok in (rings[g.verts[s[0]]][s[1]], rings[b][t[1]]):
+                count[tok] -= 1
+            return not self.too_big(n + 1, count)
+        return admit
+
+
 def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool = True,
                     cap: int = 200000, deadline: float | None = None,
                     progress: Callable[[int, int], None] | None = None,
@@ -51,6 +100,7 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     ring_len = [len(r) for r in rings]
     prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
     slots = block_slots(prims, rings)
+    bound = _SizeBound(rings, prims, max_prims)
     seen: set[Key] = set()
     out: list[Graph] = []
     frontier: list[Graph] = []
@@ -59,61 +109,17 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
         if k not in seen:
             seen.add(k)
             (out if g.is_complete else frontier).append(g)
-    mult: dict[int, int] = {}
-    for r in rings:
-        for t in set(r):
-            mult[t] = max(mult.get(t, 0), r.count(t))
-    widest = max((len(r) for r in rings), default=1) or 1
-
-    def open_counts(g: Graph) -> dict[int, int]:
-        count: dict[int, int] = {}
-        for (v, i), _ in g.gaps:
-            t = rings[g.verts[v]][i]
-            count[t] = count.get(t, 0) + 1
-        return count
-
-    def too_big(n: int, count: dict[int, int]) -> bool:
-        """A lower bound on the vertices still needed, with `n` vertices and these open
-        half-edges: those of token t beyond the open ones of token t̄ must each meet a new
-        vertex's t̄ slot."""
-        need, total = 0, 0
-        for t, c in count.items():
-            extra = c - count.get(t ^ 1, 0)
-            if extra > 0:
-                if t ^ 1 not in mult:
-                    return True
-                need = max(need, -(-extra // mult[t ^ 1]))
-                total += extra
-        return n + max(need, -(-total // widest)) > max_prims
-
-    prim_open = [open_counts(p) for p in prims]
-
-    def admit_for(g: Graph) -> Callable[[Slot, int, Slot], bool]:
-        """The bound applied to a branch gluing before the child is built."""
-        base, n = open_counts(g), len(g.verts)
-
-        def admit(s: Slot, b: int, t: Slot) -> bool:
-            count = dict(base)
-            for tok, c in prim_open[b].items():
-                count[tok] = count.get(tok, 0) + c
-            for tok in (rings[g.verts[s[0]]][s[1]], rings[b][t[1]]):
-                count[tok] -= 1
-            return not too_big(n + 1, count)
-        return admit
-
     while frontier:
         nxt: list[Graph] = []
         for g in frontier:
             if deadline is not None and time.perf_counter() > deadline:
                 return out, "time limit"
-            admit = admit_for(g) if prefilter else None
+            admit = bound.admit_for(g) if prefilter else None
             for kind, child, _ in children(g, prims, rings, loops, slots, admit):
                 # An admitted branch child already passed the bound; a loop gluing drops a
                 # t, t̄ pair, which leaves the bound as it was for the parent, but a parent
                 # may be a primitive that never met it.
-                if (admit is None or kind == "loop") and (
-                        len(child.verts) > max_prims
-                        or too_big(len(child.verts), open_counts(child))):
+                if (admit is None or kind == "loop") and bound.rejects(child):
                     continue
                 k = canonical_key(child, ring_len)
                 if k in seen:

@@ -3,6 +3,7 @@ options and the labels and attributes of hand-written productions, resolved and 
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 from lark import Token, Tree
@@ -10,7 +11,7 @@ from lark import Token, Tree
 from . import boundary as bd
 from . import ggr_free
 from .diagnostics import UserError, did_you_mean
-from .example import EdgeLabel, Primitive
+from .vocabulary import EdgeLabel, Primitive, Vocabulary
 from .frame import Corner, Frame
 from .gg_schema import check_decoration
 from .ggr_reader import Reader, _Stop
@@ -21,6 +22,7 @@ from .source import DEFAULT_CLASS, Decoration, EdgeClass, Limits, Options
 MIN_UNIT, MAX_UNIT = 1e-6, 1e12
 
 FORMAT_VERSION = 1
+_VOCABULARY = tuple(f.name for f in dataclasses.fields(Vocabulary))
 
 
 class HeaderReader(Reader):
@@ -46,7 +48,8 @@ class HeaderReader(Reader):
                                                   for n in lists["decorate"]) if d)
         if "frame" in singles:
             fields["frame"] = self._frame(singles["frame"], fields["primitives"])
-        return Header(**fields)
+        vocabulary = Vocabulary(**{k: fields.pop(k) for k in _VOCABULARY if k in fields})
+        return Header(vocabulary=vocabulary, **fields)
 
     def _frame(self, node: Tree, prims) -> Frame:
         """`frame P x y P x y …`: the corners of the border, in order round it."""

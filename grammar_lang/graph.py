@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Sequence
 
 from . import boundary as bd
+from .algorithms.components import glued_components
 
 Slot = tuple[int, int]
 # A boundary item is an open slot, or a turn (bd.UP / bd.DOWN).
@@ -72,22 +73,7 @@ class Side:
 
     def components(self) -> list[list[int]]:
         """Vertex sets of the connected components, in order of their smallest vertex."""
-        parent = list(range(len(self.vertices)))
-
-        def find(x: int) -> int:
-            while parent[x] != x:
-                parent[x] = parent[parent[x]]
-                x = parent[x]
-            return x
-
-        for v, _, w, _ in self.edges:
-            a, b = find(v), find(w)
-            if a != b:
-                parent[max(a, b)] = min(a, b)
-        groups: dict[int, list[int]] = {}
-        for v in range(len(self.vertices)):
-            groups.setdefault(find(v), []).append(v)
-        return [groups[k] for k in sorted(groups)]
+        return glued_components(range(len(self.vertices)), self.edges)
 
 
 EMPTY = Side((), (), ())

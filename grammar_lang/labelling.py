@@ -18,7 +18,8 @@ import numpy as np
 
 from . import boundary as bd
 from .diagnostics import Diagnostic, Span, UserError, error
-from .example import EdgeLabel, Example, Primitive
+from .example import Example
+from .vocabulary import EdgeLabel, Primitive, Vocabulary
 from .source import DEFAULT_CLASS, EdgeClass, ExampleGraph, ExampleSource
 
 
@@ -51,10 +52,10 @@ def label_example(source: ExampleSource, graph: ExampleGraph | None) -> Example:
     labels, edge_label, notes = _cluster(source, obs, edge_keys, faces, rigid, lengths)
     notes += _widened(classes, resolved)
     prims, vertex_prim = _primitives(source, obs, edge_label, labels, n_vertices)
+    vocabulary = Vocabulary(source.exterior, tuple(faces), resolved, tuple(labels),
+                            tuple(prims), unit)
     return Example(
-        name=source.name, path=source.path, exterior=source.exterior,
-        face_labels=tuple(faces), classes=resolved, labels=tuple(labels),
-        primitives=tuple(prims), options=source.options, unit=unit,
+        name=source.name, path=source.path, vocabulary=vocabulary, options=source.options,
         decorations=tuple(source.decorations), graph=graph,
         vertex_primitive=tuple(vertex_prim),
         edge_label=tuple(edge_label[i] for i in range(len(edge_keys))) if graph else (),

@@ -1,7 +1,8 @@
 """Faces of a noded planar straight-line graph, and point-in-ring tests (winding numbers).
 
 Half-edge 2e runs along edge e from ends[e, 0] to ends[e, 1], half-edge 2e+1 back; each
-half-edge has its face on its left. Face 0 is the unbounded face.
+half-edge has its face on its left (the walk is the kernel's, grammar_lang.algorithms.faces).
+Face 0 is the unbounded face.
 """
 
 from __future__ import annotations
@@ -10,8 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+
+from .algorithms.components import component_labels
+from .algorithms.faces import boundary_cycles, half_ends
 
 _CHUNK = 1 << 20   # point×segment pairs per numpy batch, to bound memory
 
@@ -46,38 +48,14 @@ class Faces:
 
 
 def compute_faces(vertices: np.ndarray, ends: np.ndarray) -> Faces:
-    m = len(ends)
-    origin = ends.reshape(-1)                 # origin of half-edge h = ends[h // 2, h % 2]
-    target = ends[:, ::-1].reshape(-1)
-    vec = vertices[target] - vertices[origin]
-    angle = np.arctan2(vec[:, 1], vec[:, 0])
-    order = np.lexsort((angle, origin))       # half-edges around each vertex, counter-clockwise
-    position = np.empty(2 * m, dtype=np.int64)
-    position[order] = np.arange(2 * m)
-    first = np.searchsorted(origin[order], origin[order], side="left")
-    last = np.searchsorted(origin[order], origin[order], side="right")
-    # Arriving at v along h, leave by the half-edge just clockwise of h's twin: the face on the
-    # left stays on the left.
-    twin_pos = position[np.arange(2 * m) ^ 1]
-    prev = np.where(twin_pos == first[twin_pos], last[twin_pos] - 1, twin_pos - 1)
-    nxt = order[prev]
-
-    cycle = np.full(2 * m, -1, dtype=np.int64)
-    cycles = 0
-    for h in range(2 * m):
-        if cycle[h] >= 0:
-            continue
-        while cycle[h] < 0:
-            cycle[h] = cycles
-            h = nxt[h]
-        cycles += 1
+    origin, target = half_ends(ends)
+    cycle, walks = boundary_cycles(vertices, ends)
+    cycles = len(walks)
     p, q = vertices[origin], vertices[target]
     area = np.bincount(cycle, weights=(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]) / 2.0,
                        minlength=cycles)
 
-    graph = coo_matrix((np.ones(m), (ends[:, 0], ends[:, 1])),
-                       shape=(len(vertices), len(vertices)))
-    _, component = connected_components(graph, directed=False)
+    _, component = component_labels(len(vertices), ends)
     cycle_comp = np.zeros(cycles, dtype=np.int64)
     cycle_comp[cycle] = component[origin]
     # Each component's outer boundary is its most negative cycle (minus the sum of the rest).

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+
+from .algorithms.components import component_labels
 
 MAX_ROUNDS = 32
 CROSSING_BLOCK = 512     # segments per crossing query: bounds the pairs held at once
@@ -62,8 +62,7 @@ def cluster(points: np.ndarray, distance: float) -> tuple[np.ndarray, np.ndarray
         if len(pairs) == 0:
             break
         n = len(centres)
-        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        count, labels = connected_components(graph, directed=False)
+        count, labels = component_labels(n, pairs)
         weights = np.bincount(index, minlength=n).astype(float)
         sums = np.zeros((count, 2))
         np.add.at(sums, labels, centres * weights[:, None])

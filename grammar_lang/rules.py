@@ -11,11 +11,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .diagnostics import Span
-from .example import EdgeLabel, Primitive
 from .frame import Frame
 from .free_rules import AttrDecl, Production
 from .graph import Side
-from .source import Decoration, EdgeClass, Options
+from .source import Decoration, Options
+from .vocabulary import Vocabular, Vocabulary
 
 
 @dataclass(frozen=True)
@@ -33,19 +33,15 @@ class Rule:
 
 
 @dataclass(frozen=True)
-class Header:
-    """What a rule file records about the example it was compiled from."""
+class Header(Vocabular):
+    """What a rule file records about the example it was compiled from: its vocabulary (read
+    through, as `header.labels`), options and decorations, and how the rules were made."""
 
     source: str = ""
     source_hash: str = ""
     compiler_version: str = ""
-    exterior: str = "exterior"
-    face_labels: tuple[str, ...] = ()
-    classes: tuple[EdgeClass, ...] = ()
-    labels: tuple[EdgeLabel, ...] = ()
-    primitives: tuple[Primitive, ...] = ()
+    vocabulary: Vocabulary = Vocabulary()
     options: Options = Options()
-    unit: float = 1.0
     decorations: tuple[Decoration, ...] = ()
     mode: str = "dpo"                 # 'dpo', or 'spo' (dangling edges are deleted)
     complete: bool | None = None      # None: not known (hand-written)
@@ -65,7 +61,7 @@ class Grammar:
 
     @property
     def is_free(self) -> bool:
-        """Whether this grammar holds hand-written productions (run by runtime.free_engine)."""
+        """Whether this grammar holds hand-written productions (run by runtime.engine.free_engine)."""
         return bool(self.productions) or self.start is not None
 
     @property

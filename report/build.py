@@ -123,9 +123,9 @@ def _named_example(g: Grammar, ggr: Path) -> Example | None:
 
 def gallery(grammar: Grammar, seeds: list[int], steps: int) -> list[Shot]:
     """Drawings grown by the runtime's engine, one per seed, as SVG text."""
-    from runtime.costs import parse_cost
-    from runtime.generate import Engine
-    from runtime.svg_out import render_svg
+    from runtime.engine.costs import parse_cost
+    from runtime.engine.generate import Engine
+    from runtime.output.svg_out import render_svg
 
     if not 0 <= steps <= MAX_STEPS:
         raise error(f"--steps {steps} is out of range", None, f"give 0 to {MAX_STEPS}")

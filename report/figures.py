@@ -1,6 +1,6 @@
 """SVG figures of angle graphs: rule sides, primitives and the example itself.
 
-A rule side has no positions, only edge directions; `runtime.geometry.place_side` places it
+A rule side has no positions, only edge directions; `runtime.geometry.solver.place_side` places it
 with the generation solver (lengths drawn from the edge classes), one connected component at
 a time, and the components (and bare wires) are set side by side in a row here. Open
 half-edges are drawn as dashed stubs ending in a numbered marker: the i-th open slot of both
@@ -21,9 +21,9 @@ import numpy as np
 from grammar_lang import boundary as bd
 from grammar_lang.graph import Side
 from grammar_lang.rules import Header
-from runtime.geometry import place_side
-from runtime.host import Host, unit_vector
-from runtime.svg_out import FILL_PALETTE, STROKE_PALETTE, decorations, edge_paint, face_paint
+from runtime.geometry.solver import place_side
+from runtime.engine.host import Host, unit_vector
+from runtime.output.svg_out import FILL_PALETTE, STROKE_PALETTE, decorations, edge_paint, face_paint
 
 from .markup import esc, num
 
@@ -261,11 +261,11 @@ def _svg(w: float, h: float, body: list[str], title: str) -> str:
 
 
 def example_svg(example) -> str:
-    """The example as the tool reads it (`ggc draw`): runtime.svg_out's drawing of its graph
+    """The example as the tool reads it (`ggc draw`): runtime.output.svg_out's drawing of its graph
     (faces by label, edges by class), with every vertex, merged points and split points
     included, marked in its primitive's colour and named in a tooltip."""
-    from runtime.drawing import drawing_from_example
-    from runtime.svg_out import render_svg
+    from runtime.output.drawing import drawing_from_example
+    from runtime.output.svg_out import render_svg
 
     drawing = drawing_from_example(example)
     svg = render_svg(drawing, example)

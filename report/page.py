@@ -1,6 +1,6 @@
 """The report as one self-contained HTML page: no network, no external files, one small inline
 script (the filter box). Figures of rules and primitives are inline SVG; drawings made by
-runtime.svg_out (the example, the gallery) are data-URI images, so that their element ids
+runtime.output.svg_out (the example, the gallery) are data-URI images, so that their element ids
 cannot clash, and they load lazily. Off-screen cards are not rendered until scrolled to
 (`content-visibility`), which keeps a page of hundreds of rules quick to open."""
 

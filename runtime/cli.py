@@ -43,7 +43,7 @@ def _main(argv: Sequence[str], compile_example=None) -> int:
     args.compile_example = compile_example    # None: rule files only (see report/ggrun.py)
     pin_blas_threads()
     if args.repl:
-        from .repl import repl_command
+        from .repl.session import repl_command
         return repl_command(args)
     from .run_cmd import run_command
     return run_command(args)

@@ -20,7 +20,7 @@ from grammar_lang.rules import Grammar
 from . import interrupt
 
 if TYPE_CHECKING:
-    from .generate import Summary
+    from .engine.generate import Summary
 
 DEFAULT_STEPS = 200
 
@@ -161,8 +161,8 @@ def run_job(job: Job, progress=None) -> Summary | None:
         return None
     if job.grammar.is_free:
         return _run_free(job, progress)
-    from .costs import parse_cost       # numpy and the engine load only when a run starts,
-    from .generate import Engine        # so --help and --version stay quick
+    from .engine.costs import parse_cost       # numpy and the engine load only when a run starts,
+    from .engine.generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
                     parse_cost(job.cost, job.grammar.header.labels, job.steps),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
@@ -175,16 +175,16 @@ def run_job(job: Job, progress=None) -> Summary | None:
 
 
 def _run_free(job: Job, progress=None) -> Summary:
-    """Hand-written productions: their own engine (runtime.free_engine) and SVG painter."""
-    from .free_engine import FreeEngine
-    from .free_svg import free_drawing, write_free_svg
+    """Hand-written productions: their own engine (runtime.engine.free_engine) and SVG painter."""
+    from .engine.free_engine import FreeEngine
+    from .output.free_svg import free_drawing, write_free_svg
     engine = FreeEngine(job.grammar, job.seed, dict(job.limits))
     summary = engine.run(job.steps, progress, stop=interrupt.requested)
     if job.out.lower().endswith(".svg"):
         write_free_svg(engine.host, job.grammar.header, job.out)
     elif job.out.lower().endswith(".png"):
         from grammar_lang.png import write_png
-        from .free_svg import render_free_svg
+        from .output.free_svg import render_free_svg
         write_png(render_free_svg(engine.host, job.grammar.header), job.out, *job.png)
     else:       # .json and .graphml, as for rules
         write_drawing(free_drawing(engine.host, {"grammar": job.name, "seed": job.seed,
@@ -199,15 +199,15 @@ def write_drawing(drawing, grammar: Grammar, path: str,
         drawing.save(path)
         return
     if path.lower().endswith(".graphml"):
-        from .graphml_out import write_graphml
+        from .output.graphml_out import write_graphml
         write_graphml(drawing, path)
         return
     if path.lower().endswith(".png"):
         from grammar_lang.png import write_png
-        from .svg_out import render_svg
+        from .output.svg_out import render_svg
         write_png(render_svg(drawing, grammar.header), path, *png)
         return
-    from .svg_out import write_svg
+    from .output.svg_out import write_svg
     write_svg(drawing, grammar.header, path)
 
 
@@ -225,7 +225,7 @@ def run_command(args: argparse.Namespace) -> int:
     from grammar_lang.png import check_size
     check_size(args.width, args.scale)
     grammar = load_grammar(args.file, getattr(args, "compile_example", None))
-    from .costs import parse_cost
+    from .engine.costs import parse_cost
     # Validate the cost spec once, before any work.
     if grammar.is_free and (args.cost or args.direction or args.extent):
         raise error("--cost, --direction and --extent apply to angle-graph rules, not to "

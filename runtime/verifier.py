@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import sys
 from collections import Counter, defaultdict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -26,11 +26,13 @@ from scipy.spatial import cKDTree
 
 from grammar_lang import boundary as bd
 from grammar_lang.diagnostics import Span, did_you_mean, error
-from grammar_lang.example import EdgeLabel, Primitive
-from grammar_lang.source import Decoration, EdgeClass
+from grammar_lang.example import Example
+from grammar_lang.rules import Grammar, Header
+from grammar_lang.source import Decoration
+from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabular, Vocabulary
 
-from .drawing import Drawing, load_drawing
-from .faces import UNBOUNDED, compute_faces
+from .output.drawing import Drawing, load_drawing
+from .geometry.faces import UNBOUNDED, compute_faces
 
 # "One exact direction": directions agree to this many degrees, plus what rounding the
 # coordinates to 6 decimals (as gg-drawing/1 files do) can move an edge's end.
@@ -49,40 +51,30 @@ KINDS = ("label", "ring", "direction", "length", "degenerate", "coincident", "cr
 
 
 @dataclass(frozen=True)
-class Reference:
-    """What a drawing is checked against: the parts of an `Example` or a `.ggr` `Header`."""
+class Reference(Vocabular):
+    """What a drawing is checked against: the vocabulary of an `Example` or a `.ggr` `Header`
+    (its unit at least 1 where none is given, every class resolved against it), the angle
+    tolerance and the decorations."""
 
     name: str
-    exterior: str
-    face_labels: tuple[str, ...]
-    labels: tuple[EdgeLabel, ...]
-    primitives: tuple[Primitive, ...]
-    classes: tuple[EdgeClass, ...]
+    vocabulary: Vocabulary
     angle_tolerance: float
-    unit: float
     decorations: tuple[Decoration, ...] = ()
 
-    @property
-    def label_names(self) -> tuple[str, ...]:
-        return tuple(l.name for l in self.labels)
 
-    def format(self, tokens) -> str:
-        return bd.format_tokens(tokens, [l.name for l in self.labels])
-
-
-def as_reference(obj) -> Reference:
-    """Adapt an `Example`, a `Header`, or anything carrying a `.header` (a `Grammar`)."""
+def as_reference(obj: Example | Header | Grammar | Reference) -> Reference:
+    """The reference an example, a grammar's header or a grammar is checked against."""
     if isinstance(obj, Reference):
         return obj
-    if hasattr(obj, "header"):
+    if isinstance(obj, Grammar):
         obj = obj.header
-    unit = float(getattr(obj, "unit", 1.0) or 1.0)
+    name = obj.name if isinstance(obj, Example) else obj.source
+    unit = float(obj.unit or 1.0)
     classes = tuple(c if c.min_length is not None and c.max_length is not None
                     else c.resolved(unit) for c in obj.classes)
-    name = getattr(obj, "name", None) or getattr(obj, "source", "") or ""
-    return Reference(str(name), obj.exterior, tuple(obj.face_labels), tuple(obj.labels),
-                     tuple(obj.primitives), classes, float(obj.options.angle_tolerance), unit,
-                     tuple(getattr(obj, "decorations", ())))
+    vocabulary = replace(obj.vocabulary, classes=classes, unit=unit)
+    return Reference(str(name or ""), vocabulary, float(obj.options.angle_tolerance),
+                     tuple(obj.decorations))
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ import math
 from hypothesis import strategies as st
 
 from grammar_lang import boundary as bd
-from grammar_lang.example import EdgeLabel, Primitive
+from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabulary
 from grammar_lang.gg_schema import DECORATIONS, Field
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Grammar, Header, Rule
@@ -102,9 +102,10 @@ def headers(draw) -> Header:
                       Limits(draw(st.integers(0, 10**6)), draw(st.integers(0, 100)),
                              draw(st.integers(0, 10**9)), draw(nonneg | st.just(math.inf))))
     return Header(source=draw(st.text(max_size=12)), source_hash=draw(st.text(max_size=12)),
-                  compiler_version=draw(st.text(max_size=6)), exterior=exterior,
-                  face_labels=faces, classes=classes, labels=labels, primitives=tuple(prims),
-                  options=options, unit=draw(positive), decorations=tuple(decorations),
+                  compiler_version=draw(st.text(max_size=6)),
+                  vocabulary=Vocabulary(exterior, faces, classes, labels, tuple(prims),
+                                        draw(positive)),
+                  options=options, decorations=tuple(decorations),
                   mode=draw(st.sampled_from(["dpo", "spo"])),
                   complete=draw(st.sampled_from([True, False, None])))
 

@@ -1,6 +1,7 @@
 """Examples given by their primitives, as the paper's figures give them."""
 
-from grammar_lang.example import EdgeLabel, Example, Primitive
+from grammar_lang.example import Example
+from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabulary
 from grammar_lang.source import EdgeClass, Options
 
 X, XB, Y, YB = 0, 1, 2, 3     # tokens of labels x (0°) and y (90°)
@@ -15,6 +16,6 @@ CORNERS_AND_T = RECTANGLE + [(XB, YB, X)]
 def make(rings, labels=(("x", 0.0), ("y", 90.0)), options=Options(), name="hand") -> Example:
     labs = tuple(EdgeLabel(n, "exterior", "exterior", a, "0") for n, a in labels)
     prims = tuple(Primitive(f"p{k}", tuple(r)) for k, r in enumerate(rings))
-    return Example(name=name, path="<hand>", exterior="exterior", face_labels=("exterior",),
-                   classes=(EdgeClass("0", 10.0, 400.0),), labels=labs, primitives=prims,
-                   options=options, unit=100.0)
+    vocabulary = Vocabulary("exterior", ("exterior",), (EdgeClass("0", 10.0, 400.0),), labs,
+                            prims, 100.0)
+    return Example(name=name, path="<hand>", vocabulary=vocabulary, options=options)

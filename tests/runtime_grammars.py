@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from grammar_lang import boundary as bd
-from grammar_lang.example import EdgeLabel, Primitive
+from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabulary
 from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 from grammar_lang.source import EdgeClass
@@ -12,9 +12,8 @@ UP = bd.UP
 
 
 def _header(labels, prims, faces, mode="dpo", classes=(EdgeClass("0"),)):
-    return Header(source="hand-built", exterior="exterior", face_labels=faces,
-                  classes=classes, labels=tuple(labels), primitives=tuple(prims),
-                  unit=1.0, mode=mode)
+    return Header(source="hand-built", vocabulary=Vocabulary(
+        "exterior", faces, classes, tuple(labels), tuple(prims), 1.0), mode=mode)
 
 
 def square_labels():

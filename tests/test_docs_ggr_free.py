@@ -12,7 +12,7 @@ from conftest import ROOT
 from grammar_lang.expr_functions import CONSTANTS, FUNCTIONS
 from grammar_lang.free_rules import DERIVED
 from grammar_lang.ggr_parser import parse_ggr
-from runtime.free_engine import FreeEngine
+from runtime.engine.free_engine import FreeEngine
 
 TEXT = (ROOT / "docs" / "ggr-language.md").read_text(encoding="utf-8")
 BLOCKS = [(TEXT.count("\n", 0, m.start()) + 1, m.group(1))

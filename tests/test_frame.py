@@ -10,7 +10,7 @@ from grammar_lang.frame import border_labels, border_primitives, corner_primitiv
 from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_parser import parse_ggr
 from grammar_lang.loader import load_example
-from runtime.generate import Engine
+from runtime.engine.generate import Engine
 from runtime.verifier import check_drawing
 
 ILLUSTRATIONS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "illustrations"
@@ -108,7 +108,7 @@ def test_connected_grows_one_structure(seed):
     import networkx as nx
     ex = load_example(Path(__file__).resolve().parent.parent / "examples" / "tree.gg")
     assert ex.options.connected
-    from runtime.costs import SizeCost
+    from runtime.engine.costs import SizeCost
     eng = Engine(compile_example(ex).grammar, seed=seed, cost=SizeCost(80))
     eng.run(80)
     g = nx.Graph()
@@ -136,7 +136,7 @@ def test_an_extent_stretches_the_frame(castle):
 
 def test_costs_take_the_names_of_the_example():
     """`--cost label:NAME` takes a face label, an edge class or an edge label."""
-    from runtime.costs import LabelCost, parse_cost
+    from runtime.engine.costs import LabelCost, parse_cost
     labels = load_example(EXAMPLES / "castle.gg").labels
     window = parse_cost("label:window:0.2", labels, 10)
     assert isinstance(window, LabelCost) and window.labels

@@ -13,9 +13,9 @@ from conftest import ROOT
 from grammar_lang.diagnostics import UserError
 from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_parser import load_ggr, parse_ggr
-from runtime.free_engine import FreeEngine
-from runtime.free_svg import render_free_svg
-from runtime.rejections import Rejection
+from runtime.engine.free_engine import FreeEngine
+from runtime.output.free_svg import render_free_svg
+from runtime.engine.rejections import Rejection
 
 EXAMPLES = ["koch", "honda-tree", "facade", "tiles", "rosette"]
 
@@ -251,7 +251,7 @@ def test_an_empty_mother_graph_matches_every_step():
 def test_the_repl_refuses_productions_with_a_message():
     import io
 
-    from runtime.repl import Output, Session
+    from runtime.repl.session import Output, Session
     s = Session(Output(io.StringIO(), io.StringIO(), colour=False))
     with pytest.raises(UserError, match="the REPL explores angle-graph rules"):
         s.use(load_ggr(ROOT / "examples" / "koch.ggr"), "koch.ggr")

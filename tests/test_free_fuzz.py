@@ -12,8 +12,8 @@ import test_ggr_fuzz
 from conftest import ROOT
 from grammar_lang.diagnostics import UserError
 from grammar_lang.ggr_parser import parse_ggr
-from runtime.free_engine import FreeEngine
-from runtime.free_svg import render_free_svg
+from runtime.engine.free_engine import FreeEngine
+from runtime.output.free_svg import render_free_svg
 
 DOC = (ROOT / "docs" / "ggr-language.md").read_text(encoding="utf-8")
 SEEDS = sorted(p.read_text(encoding="utf-8") for p in (ROOT / "examples").glob("*.ggr")

@@ -54,9 +54,8 @@ def corpus_headers():
         ex = load_example(path)
         out.append(pytest.param(Header(
             source=str(path.name), source_hash="sha256:0", compiler_version="test",
-            exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
-            labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit,
-            decorations=ex.decorations), id=path.stem))
+            vocabulary=ex.vocabulary, options=ex.options, decorations=ex.decorations),
+            id=path.stem))
     return out
 
 
@@ -78,9 +77,8 @@ def test_shipped_example_headers_round_trip(path):
     from grammar_lang.loader import load_example
     from grammar_lang.rules import Header
     ex = load_example(path)
-    header = Header(source=str(path.name), exterior=ex.exterior, face_labels=ex.face_labels,
-                    classes=ex.classes, labels=ex.labels, primitives=ex.primitives,
-                    options=ex.options, unit=ex.unit, decorations=ex.decorations)
+    header = Header(source=str(path.name), vocabulary=ex.vocabulary, options=ex.options,
+                    decorations=ex.decorations)
     grammar = Grammar(header, ())
     assert parse_ggr(emit_ggr(grammar)) == grammar
 

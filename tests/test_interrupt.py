@@ -12,7 +12,7 @@ import time
 import pytest
 
 from conftest import ROOT
-from runtime.drawing import load_drawing
+from runtime.output.drawing import load_drawing
 
 GRAMMAR = ROOT / "examples" / "square-walls.ggr"
 

@@ -1,4 +1,4 @@
-"""Free-standing components land in a face of their outer label (runtime/landing.py)."""
+"""Free-standing components land in a face of their outer label (runtime/geometry/landing.py)."""
 
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ import pytest
 
 from compiler.infer import compile_example
 from grammar_lang.loader import load_example
-from runtime.costs import SizeCost
-from runtime.generate import Engine
-from runtime.landing import outer_label
-from runtime.rewrite import plan
-from runtime.matching import Match
+from runtime.engine.costs import SizeCost
+from runtime.engine.generate import Engine
+from runtime.geometry.landing import outer_label
+from runtime.engine.rewrite import plan
+from runtime.engine.matching import Match
 from runtime.verifier import check_drawing
 
 WALL = """\

@@ -46,3 +46,71 @@ def test_the_check_sees_imports_by_string():
     tree = ast.parse("import importlib\nx = importlib.import_module('compiler.infer')\n"
                      "y = __import__('runtime')\n")
     assert {top for _, top in imported(tree)} >= {"compiler", "runtime"}
+
+
+# runtime/ by role: each subpackage holds these modules, and nothing else sits at the top.
+RUNTIME_LAYOUT = {
+    "engine": {"host", "matching", "rewrite", "schedule", "costs", "rejections", "generate",
+               "free_host", "free_match", "free_engine"},
+    "geometry": {"solver", "spatial", "faces", "landing", "framing"},
+    "output": {"drawing", "svg_out", "graphml_out", "free_svg"},
+    "repl": {"session", "commands", "complete"},
+    "": {"cli", "run_cmd", "interrupt", "verifier"},
+}
+# Which roles a role may import from. The engine and the geometry are one core (the solver
+# places a rewrite's change, the engine asks the solver); they take from output only the
+# drawing value, and nothing below the front ends imports the REPL or the command line.
+MAY_IMPORT = {
+    "engine": {"geometry", "output.drawing"},
+    "geometry": {"engine", "output.drawing"},
+    "output": {"engine", "geometry", "verifier"},
+    "verifier": {"geometry", "output"},
+    "repl": {"engine", "output", "verifier", "run_cmd"},
+    "run_cmd": {"engine", "output", "interrupt"},
+    "cli": {"repl", "run_cmd", "verifier"},
+    "interrupt": set(),
+}
+
+
+def test_runtime_is_laid_out_by_role():
+    found = {}
+    for path in (ROOT / "runtime").rglob("*.py"):
+        parts = path.relative_to(ROOT / "runtime").parts
+        if path.name != "__init__.py":
+            found.setdefault(parts[0] if len(parts) > 1 else "", set()).add(path.stem)
+        assert len(parts) <= 2, f"{path}: one level of subpackages only"
+    assert found == RUNTIME_LAYOUT
+    for pkg in RUNTIME_LAYOUT:
+        init = ROOT / "runtime" / pkg / "__init__.py"
+        assert ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))), init
+
+
+def runtime_imports(path: Path):
+    """(line, role or role.module) of every import of another runtime module by `path`."""
+    parts = path.relative_to(ROOT).with_suffix("").parts      # ('runtime', pkg..., module)
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:
+            base = list(parts[:len(parts) - node.level])
+            target = base + (node.module.split(".") if node.module else [])
+        elif node.module and node.module.split(".")[0] == "runtime":
+            target = node.module.split(".")
+        else:
+            continue
+        rest = target[1:] or [a.name for a in node.names][:1]
+        yield node.lineno, ".".join(rest[:2]) if rest[0] in RUNTIME_LAYOUT else rest[0]
+
+
+def test_runtime_roles_import_only_what_they_may():
+    bad = []
+    for path in sorted((ROOT / "runtime").rglob("*.py")):
+        parts = path.relative_to(ROOT / "runtime").parts
+        role = parts[0] if len(parts) > 1 else path.stem
+        if role == "__init__.py" or role == "__init__":
+            continue
+        for line, target in runtime_imports(path):
+            top = target.split(".")[0]
+            if top != role and top not in MAY_IMPORT[role] and target not in MAY_IMPORT[role]:
+                bad.append(f"{path.relative_to(ROOT)}:{line} ({role}) imports {target}")
+    assert not bad, "\n".join(bad)

@@ -9,8 +9,8 @@ from grammar_lang import boundary as bd
 from grammar_lang.loader import load_example
 from grammar_lang.networkx_view import side_graph
 from report.ggrun import main
-from runtime.drawing import load_drawing
-from runtime.graphml_out import drawing_graph
+from runtime.output.drawing import load_drawing
+from runtime.output.graphml_out import drawing_graph
 
 
 def test_graphml_holds_the_same_drawing_as_the_json(tmp_path):

@@ -19,9 +19,9 @@ from hypothesis import strategies as st
 
 from report.ggrun import compile_example, main
 from runtime.cli import build_parser
-from runtime.repl import Output, Session, execute, repl_command
-from runtime.repl_commands import COMMANDS
-from runtime.repl_complete import completions
+from runtime.repl.session import Output, Session, execute, repl_command
+from runtime.repl.commands import COMMANDS
+from runtime.repl.complete import completions
 from runtime.verifier import check_drawing
 
 from runtime_grammars import cut_pair, filled_square, lines, lines_with_wire

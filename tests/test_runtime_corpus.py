@@ -11,8 +11,8 @@ from functools import lru_cache
 
 import pytest
 
-from runtime.costs import SizeCost
-from runtime.generate import Engine
+from runtime.engine.costs import SizeCost
+from runtime.engine.generate import Engine
 from runtime.verifier import check_drawing
 
 from conftest import CORPUS, ROOT

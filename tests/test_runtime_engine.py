@@ -12,9 +12,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from grammar_lang.ggr_emit import emit_ggr
-from runtime.costs import NoCost, SizeCost
-from runtime.generate import Engine
-from runtime.matching import find_match, iter_matches
+from runtime.engine.costs import NoCost, SizeCost
+from runtime.engine.generate import Engine
+from runtime.engine.matching import find_match, iter_matches
 from runtime.verifier import check_drawing
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -232,7 +232,7 @@ def _square(host, x0, y0, size):
 
 
 def test_a_component_inside_a_face_of_another_label_is_refused():
-    from runtime.host import Host
+    from runtime.engine.host import Host
     g = rg.filled_square()
     host = Host(g.header)
     outer = _square(host, 0.0, 0.0, 10.0)
@@ -252,7 +252,7 @@ def test_ray_left_treats_nearly_level_heights_as_level(noise, y, lean):
     # A wall hangs down from a vertex that should be level with p but differs by rounding
     # noise; a post rises from it. Just above p's height the ray meets the post, whatever the
     # noise, and never the wall (it lies below the ray).
-    from runtime.spatial import Grid
+    from runtime.geometry.spatial import Grid
     g = Grid(1.0)
     w = (0.0, y + noise)
     g.add_point("w", w)
@@ -264,7 +264,7 @@ def test_ray_left_treats_nearly_level_heights_as_level(noise, y, lean):
 
 
 def test_ray_left_prefers_the_segment_leaning_right_at_a_shared_vertex():
-    from runtime.spatial import Grid
+    from runtime.geometry.spatial import Grid
     g = Grid(1.0)
     g.add_point("o", (0.0, 0.0))
     for sid, end in (("a", (0.0, 1.0)), ("b", (1.0, 1.0)), ("c", (-1.0, 1.0))):

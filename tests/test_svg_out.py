@@ -12,8 +12,8 @@ from scipy.spatial import cKDTree
 from conftest import corpus_names
 from grammar_lang.loader import load_example, load_source
 from grammar_lang.planar import build_planar_graph
-from runtime.drawing import Drawing, DVertex, drawing_from_example
-from runtime.svg_out import FILL_PALETTE, render_svg, write_svg
+from runtime.output.drawing import Drawing, DVertex, drawing_from_example
+from runtime.output.svg_out import FILL_PALETTE, render_svg, write_svg
 from test_verifier import example, inner_faces, nested_copy, own_drawing, transformed, union
 
 SVG = "{http://www.w3.org/2000/svg}"

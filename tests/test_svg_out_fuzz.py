@@ -20,8 +20,9 @@ from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_parser import parse_ggr
 from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration, EdgeClass
-from runtime.drawing import DEdge, Drawing, DVertex
-from runtime.svg_out import render_svg
+from grammar_lang.vocabulary import Vocabulary
+from runtime.output.drawing import DEdge, Drawing, DVertex
+from runtime.output.svg_out import render_svg
 
 SVG = "{http://www.w3.org/2000/svg}"
 XLINK = "{http://www.w3.org/1999/xlink}href"
@@ -71,8 +72,8 @@ def test_hostile_names_and_raw_decorations_stay_inside_their_attributes(
              Decoration("edge", "*", (("stroke", stroke), ("image", image))),
              Decoration("vertex", "*", (("marker", marker), ("fill", fill), ("stroke", stroke),
                                         ("image", image))))
-    header = Header(source=name, exterior=exterior, face_labels=(label, exterior),
-                    classes=(EdgeClass(cls, 0.1, 10.0),), decorations=decos)
+    vocabulary = Vocabulary(exterior, (label, exterior), (EdgeClass(cls, 0.1, 10.0),))
+    header = Header(source=name, vocabulary=vocabulary, decorations=decos)
     svg = render_svg(square(label, exterior, cls), header, base=base)
     check_structure(svg, {label, exterior}, {cls})
 
@@ -131,7 +132,7 @@ def test_the_reported_injections_are_refused():
 def test_gg_labels_and_classes_stay_inside_their_attributes(tmp_path_factory, label, cls):
     """From a `.gg` file through the loader and the writer."""
     from grammar_lang.loader import load_example
-    from runtime.drawing import drawing_from_example
+    from runtime.output.drawing import drawing_from_example
     src = (f'example "{label}"\nclass "{cls}" {{ }}\n'
            f'polygon "{label}" (0, 0) (10, 0) (10, 10) (0, 10) class "{cls}"\n')
     path = Path(tmp_path_factory.mktemp("gg")) / "x.gg"

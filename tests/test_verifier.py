@@ -15,8 +15,8 @@ from shapely.ops import polylabel
 from conftest import CORPUS, corpus_names
 from grammar_lang.loader import load_example
 from grammar_lang.rules import Header
-from runtime.drawing import DEdge, Drawing, DVertex, drawing_from_example, parse_drawing
-from runtime.faces import compute_faces
+from runtime.output.drawing import DEdge, Drawing, DVertex, drawing_from_example, parse_drawing
+from runtime.geometry.faces import compute_faces
 from runtime.verifier import as_reference, check_drawing
 
 NAMES = corpus_names()
@@ -81,8 +81,7 @@ def test_example_drawn_as_itself_passes(name):
 
 def test_header_is_accepted_like_the_example():
     ex = example("house-filled")
-    header = Header(exterior=ex.exterior, face_labels=ex.face_labels, classes=ex.classes,
-                    labels=ex.labels, primitives=ex.primitives, options=ex.options, unit=ex.unit)
+    header = Header(vocabulary=ex.vocabulary, options=ex.options)
     d = own_drawing("house-filled")
     assert check_drawing(header, d) == []
     assert as_reference(header).labels == as_reference(ex).labels
@@ -508,14 +507,14 @@ def test_ggrun_check_limits_the_listing(tmp_path, capsys):
 def test_half_edges_out_of_their_primitives_order():
     """Two labels 5° apart with different faces: within the tolerance each edge fits its own
     label, yet around the vertex they come in the other order, which no primitive allows."""
-    from grammar_lang.example import EdgeLabel, Primitive
+    from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabulary
     from grammar_lang.source import EdgeClass
     from runtime.verifier import Reference
     labels = (EdgeLabel("a", "X", "Y", 0.0, "0"), EdgeLabel("b", "Y", "Z", 5.0, "0"),
               EdgeLabel("c", "Z", "X", 90.0, "0"))
     ring = (0, 2, 4)                                   # a, b, c counter-clockwise
-    ref = Reference("swap", "X", ("X", "Y", "Z"), labels, (Primitive("p", ring),),
-                    (EdgeClass("0", 0.1, 100.0),), 10.0, 1.0)
+    ref = Reference("swap", Vocabulary("X", ("X", "Y", "Z"), (EdgeClass("0", 0.1, 100.0),),
+                                       labels, (Primitive("p", ring),), 1.0), 10.0)
 
     def star(angles):
         vs = (DVertex(0, 0.0, 0.0),) + tuple(
@@ -590,9 +589,8 @@ def test_check_against_a_grammar_file(tmp_path, capsys, name):
     from grammar_lang.ggr_emit import emit_ggr
     from grammar_lang.rules import Grammar
     ex = example(name)
-    header = Header(source=str(ex.path), exterior=ex.exterior, face_labels=ex.face_labels,
-                    classes=ex.classes, labels=ex.labels, primitives=ex.primitives,
-                    options=ex.options, unit=ex.unit, decorations=ex.decorations)
+    header = Header(source=str(ex.path), vocabulary=ex.vocabulary, options=ex.options,
+                    decorations=ex.decorations)
     ggr = tmp_path / f"{name}.ggr"
     ggr.write_text(emit_ggr(Grammar(header, ())))
     good, bad = tmp_path / "good.json", tmp_path / "bad.json"
@@ -633,7 +631,7 @@ def messy_drawings(draw):
 @settings(max_examples=300, deadline=None)
 @given(messy_drawings())
 def test_any_drawing_gets_an_answer_not_a_crash(case):
-    from runtime.svg_out import render_svg
+    from runtime.output.svg_out import render_svg
     from runtime.verifier import KINDS
     name, d = case
     failures = check_drawing(example(name), d)

@@ -2,7 +2,7 @@
 
 from hypothesis import given, settings, strategies as st
 
-from compiler.matching import Matcher, Piece
+from compiler.boundary_match import Matcher, Piece
 from grammar_lang import boundary as bd
 
 

@@ -22,10 +22,10 @@ from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
 from .costs import Cost, NoCost, Stats, metropolis_accepts
-from .framing import place_frame, random_inside
-from .geometry import I_ROUNDS, J_SAMPLES, Solver, SystemCache
+from ..geometry.framing import place_frame, random_inside
+from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from .host import Host, Point, Tables
-from .landing import outer_label, sectors, spot
+from ..geometry.landing import outer_label, sectors, spot
 from .matching import Match, iter_matches
 from .rejections import Rejection
 from .rewrite import Change, DirectedRule, commit, plan

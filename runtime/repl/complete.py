@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from .repl import Session
-from .repl_commands import ALIASES, COMMANDS
+from .session import Session
+from .commands import ALIASES, COMMANDS
 
 
 def completions(session: Session, text: str) -> list[str]:

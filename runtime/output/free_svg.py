@@ -18,7 +18,7 @@ from xml.sax.saxutils import escape
 from grammar_lang.fileio import atomic_write
 
 from .drawing import DEdge, Drawing, DVertex
-from .free_host import FreeHost
+from ..engine.free_host import FreeHost
 from .svg_out import FILL_PALETTE, MARGIN, SCREEN, STROKE_WIDTH, _Fmt, _marker, _style_for, \
     decorations, element
 

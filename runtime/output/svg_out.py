@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass, field
 from pathlib import Path
 from xml.sax.saxutils import escape, quoteattr
 
@@ -26,7 +27,7 @@ import numpy as np
 from grammar_lang.fileio import atomic_write
 
 from .drawing import Drawing
-from .faces import UNBOUNDED, compute_faces, cycle_points
+from ..geometry.faces import UNBOUNDED, compute_faces, cycle_points
 
 # Colour-blind-friendly fills (light) and strokes (dark), used in order.
 FILL_PALETTE = ("#a6cee3", "#b2df8a", "#fdbf6f", "#cab2d6", "#fb9a99", "#ffff99", "#8dd3c7",
@@ -104,179 +105,205 @@ def edge_paint(cls: str, class_order: list[str], edge_decos: list[tuple[str, dic
     return style
 
 
-def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None) -> str:
-    """The drawing as SVG text. `reference` (an Example, Header or Grammar) supplies the
-    exterior's name, the order of face labels and edge classes, the unit and decorations;
-    `base` is the folder the SVG will be written to, so image links can be relative."""
-    from .verifier import as_reference, vertex_primitives
+@dataclass
+class _Canvas:
+    """What every part of the picture is drawn with: the drawing as arrays, its reference,
+    the viewBox and number format, and the <defs> collected on the way."""
 
-    ref = as_reference(reference) if reference is not None else None
-    exterior = ref.exterior if ref else "exterior"
-    ids = [v.id for v in drawing.vertices]
-    index = {v: i for i, v in enumerate(ids)}
-    xy = np.array([(v.x, v.y) for v in drawing.vertices], dtype=float).reshape(-1, 2)
-    ends = np.array([(index[e.u], index[e.v]) for e in drawing.edges], dtype=np.int64).reshape(-1, 2)
-    lengths = np.hypot(*(xy[ends[:, 1]] - xy[ends[:, 0]]).T) if len(ends) else np.zeros(0)
-    unit = ref.unit if ref else (float(np.median(lengths[lengths > 0])) if np.any(lengths > 0) else 1.0)
+    drawing: Drawing
+    ref: object                      # a verifier Reference, or None
+    base: str | Path | None
+    exterior: str
+    ids: list[int]
+    xy: np.ndarray
+    ends: np.ndarray
+    unit: float
+    vb: tuple[float, float, float, float]
+    fmt: _Fmt
+    defs: list[str] = field(default_factory=list)
 
-    lo = xy.min(axis=0) if len(xy) else np.zeros(2)
-    hi = xy.max(axis=0) if len(xy) else np.zeros(2)
-    size = float(max(hi - lo)) if len(xy) else 0.0
-    margin = MARGIN * size if size > 0 else unit
-    fmt = _Fmt(size + 2 * margin)
-    vb = (lo[0] - margin, -hi[1] - margin, hi[0] - lo[0] + 2 * margin, hi[1] - lo[1] + 2 * margin)
-    k = SCREEN / max(vb[2], vb[3])
+    def pt(self, p) -> str:
+        return f"{self.fmt(p[0])},{self.fmt(-p[1])}"
 
-    def pt(p) -> str:
-        return f"{fmt(p[0])},{fmt(-p[1])}"
-
-    def href(path: str) -> str:
-        if base is not None:
+    def href(self, path: str) -> str:
+        if self.base is not None:
             try:
-                return Path(os.path.relpath(path, base)).as_posix()
+                return Path(os.path.relpath(path, self.base)).as_posix()
             except ValueError:   # another drive on Windows
                 pass
         return Path(path).as_uri()
 
-    face_decos = decorations(ref, "face")
-    edge_decos = decorations(ref, "edge")
-    vertex_decos = decorations(ref, "vertex")
-    label_order = list(ref.face_labels) if ref else []
+
+def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None) -> str:
+    """The drawing as SVG text. `reference` (an Example, Header or Grammar) supplies the
+    exterior's name, the order of face labels and edge classes, the unit and decorations;
+    `base` is the folder the SVG will be written to, so image links can be relative."""
+    from ..verifier import as_reference
+
+    cv = _canvas(drawing, as_reference(reference) if reference is not None else None, base)
+    vb, k = cv.vb, SCREEN / max(cv.vb[2], cv.vb[3])
+    svg = element("svg", [("xmlns", "http://www.w3.org/2000/svg"),
+                          ("xmlns:xlink", "http://www.w3.org/1999/xlink"),
+                          ("viewBox", " ".join(cv.fmt(x) for x in vb)),
+                          ("width", cv.fmt(vb[2] * k)), ("height", cv.fmt(vb[3] * k))], "")
+    head = [svg[: -len("</svg>")]]
+    ref = cv.ref
+    title = (ref.name if ref and ref.name else drawing.meta.get("example", "")) or "drawing"
+    head.append(f"  <title>{escape(str(title))}: {len(cv.ids)} vertices, "
+                f"{len(drawing.edges)} edges</title>")
+    body = _faces_group(cv) + _edges_group(cv) + _vertices_group(cv)
+    if cv.defs:
+        head += ["  <defs>"] + cv.defs + ["  </defs>"]
+    return "\n".join(head + body + ["</svg>"]) + "\n"
+
+
+def _canvas(drawing: Drawing, ref, base) -> _Canvas:
+    ids = [v.id for v in drawing.vertices]
+    index = {v: i for i, v in enumerate(ids)}
+    xy = np.array([(v.x, v.y) for v in drawing.vertices], dtype=float).reshape(-1, 2)
+    ends = np.array([(index[e.u], index[e.v]) for e in drawing.edges],
+                    dtype=np.int64).reshape(-1, 2)
+    lengths = np.hypot(*(xy[ends[:, 1]] - xy[ends[:, 0]]).T) if len(ends) else np.zeros(0)
+    unit = ref.unit if ref else (float(np.median(lengths[lengths > 0]))
+                                 if np.any(lengths > 0) else 1.0)
+    lo = xy.min(axis=0) if len(xy) else np.zeros(2)
+    hi = xy.max(axis=0) if len(xy) else np.zeros(2)
+    size = float(max(hi - lo)) if len(xy) else 0.0
+    margin = MARGIN * size if size > 0 else unit
+    vb = (lo[0] - margin, -hi[1] - margin, hi[0] - lo[0] + 2 * margin,
+          hi[1] - lo[1] + 2 * margin)
+    return _Canvas(drawing, ref, base, ref.exterior if ref else "exterior", ids, xy, ends, unit,
+                   vb, _Fmt(size + 2 * margin))
+
+
+def _faces_group(cv: _Canvas) -> list[str]:
+    """One filled path per painted face, its holes cut out."""
+    drawing, xy, ends, exterior, vb = cv.drawing, cv.xy, cv.ends, cv.exterior, cv.vb
+    face_decos = decorations(cv.ref, "face")
+    label_order = list(cv.ref.face_labels) if cv.ref else []
     for e in drawing.edges:
         for name in (e.left, e.right):
             if name not in label_order:
                 label_order.append(name)
     plain = [n for n in label_order if n != exterior and not _hex_colour(n)]
-
-    def face_style(label: str) -> tuple[str | None, dict]:
-        return face_paint(label, plain, exterior, face_decos)
-
-    svg = element("svg", [("xmlns", "http://www.w3.org/2000/svg"),
-                          ("xmlns:xlink", "http://www.w3.org/1999/xlink"),
-                          ("viewBox", " ".join(fmt(x) for x in vb)), ("width", fmt(vb[2] * k)),
-                          ("height", fmt(vb[3] * k))], "")
-    head = [svg[: -len("</svg>")]]
-    title = (ref.name if ref and ref.name else drawing.meta.get("example", "")) or "drawing"
-    head.append(f"  <title>{escape(str(title))}: {len(ids)} vertices, {len(drawing.edges)} edges</title>")
-    defs: list[str] = []
-    body: list[str] = []
-
-    # --- faces ------------------------------------------------------------------------------
     faces = compute_faces(xy, ends)
     left = [drawing.edges[h >> 1].right if h & 1 else drawing.edges[h >> 1].left
             for h in range(2 * len(drawing.edges))]
     patterns: dict[tuple, str] = {}
-    body.append('  <g id="faces" stroke="none">')
+    out = ['  <g id="faces" stroke="none">']
     for f, face in enumerate(faces.faces):
         if f == UNBOUNDED:
             label = exterior
             rings = [cycle_points(xy, ends, faces.cycles[c]) for c in face.holes]
-            fill, style = face_style(label)
-            if fill is None and "pattern" not in style:
-                continue
-            box = [(vb[0], -vb[1]), (vb[0] + vb[2], -vb[1]), (vb[0] + vb[2], -vb[1] - vb[3]),
-                   (vb[0], -vb[1] - vb[3])]
-            rings.insert(0, np.array(box))
         else:
             cyc = faces.cycles[face.outer]
             counts: dict[str, int] = {}
             for h in cyc:
                 counts[left[h]] = counts.get(left[h], 0) + 1
             label = min(counts, key=lambda n: (-counts[n], n))
-            fill, style = face_style(label)
-            if fill is None and "pattern" not in style:
-                continue
             rings = [cycle_points(xy, ends, cyc)] + [cycle_points(xy, ends, faces.cycles[c])
                                                      for c in face.holes]
-        paint = fill or "none"
-        if "pattern" in style:
-            key = (style["pattern"], float(style.get("pattern-scale", 1.0)))
-            if key not in patterns:
-                pid = f"pattern{len(patterns)}"
-                patterns[key] = pid
-                w = fmt(unit * key[1])
-                image = element("image", [("xlink:href", href(key[0])), ("width", w),
-                                          ("height", w)])
-                defs.append("    " + element("pattern", [("id", pid),
-                                                         ("patternUnits", "userSpaceOnUse"),
-                                                         ("width", w), ("height", w)], image))
-            paint = f"url(#{patterns[key]})"
-        d = " ".join("M " + " L ".join(pt(p) for p in ring) + " Z" for ring in rings if len(ring))
-        opacity = fmt(style["opacity"]) if "opacity" in style else None
-        body.append("    " + element("path", [("d", d), ("fill", paint), ("fill-rule", "evenodd"),
-                                              ("fill-opacity", opacity), ("data-label", label)]))
-    body.append("  </g>")
+        fill, style = face_paint(label, plain, exterior, face_decos)
+        if fill is None and "pattern" not in style:
+            continue
+        if f == UNBOUNDED:
+            box = [(vb[0], -vb[1]), (vb[0] + vb[2], -vb[1]), (vb[0] + vb[2], -vb[1] - vb[3]),
+                   (vb[0], -vb[1] - vb[3])]
+            rings.insert(0, np.array(box))
+        paint = _pattern_paint(cv, style, patterns) if "pattern" in style else fill or "none"
+        d = " ".join("M " + " L ".join(cv.pt(p) for p in ring) + " Z"
+                     for ring in rings if len(ring))
+        opacity = cv.fmt(style["opacity"]) if "opacity" in style else None
+        out.append("    " + element("path", [("d", d), ("fill", paint), ("fill-rule", "evenodd"),
+                                             ("fill-opacity", opacity), ("data-label", label)]))
+    out.append("  </g>")
+    return out
 
-    # --- edges, one path per class ----------------------------------------------------------
-    class_order = [c.name for c in ref.classes] if ref else []
-    for e in drawing.edges:
+
+def _pattern_paint(cv: _Canvas, style: dict, patterns: dict[tuple, str]) -> str:
+    """A face's pattern fill: one <pattern> per image and scale, defined on first use."""
+    key = (style["pattern"], float(style.get("pattern-scale", 1.0)))
+    if key not in patterns:
+        pid = f"pattern{len(patterns)}"
+        patterns[key] = pid
+        w = cv.fmt(cv.unit * key[1])
+        image = element("image", [("xlink:href", cv.href(key[0])), ("width", w), ("height", w)])
+        cv.defs.append("    " + element("pattern", [("id", pid), ("patternUnits", "userSpaceOnUse"),
+                                                    ("width", w), ("height", w)], image))
+    return f"url(#{patterns[key]})"
+
+
+def _edges_group(cv: _Canvas) -> list[str]:
+    """One stroked path per edge class, then the edge images."""
+    edges, xy, ends, fmt = cv.drawing.edges, cv.xy, cv.ends, cv.fmt
+    edge_decos = decorations(cv.ref, "edge")
+    class_order = [c.name for c in cv.ref.classes] if cv.ref else []
+    for e in edges:
         if e.cls not in class_order:
             class_order.append(e.cls)
     by_class: dict[str, list[int]] = {}
-    for i, e in enumerate(drawing.edges):
+    for i, e in enumerate(edges):
         by_class.setdefault(e.cls, []).append(i)
-    body.append('  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">')
+    out = ['  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">']
     images: list[str] = []
     for cls in sorted(by_class, key=class_order.index):
         style = edge_paint(cls, class_order, edge_decos)
-        colour = style["stroke"]
-        width = float(style.get("width", STROKE_WIDTH * unit))
-        d = " ".join(f"M {pt(xy[ends[i, 0]])} L {pt(xy[ends[i, 1]])}" for i in by_class[cls])
+        width = float(style.get("width", STROKE_WIDTH * cv.unit))
+        d = " ".join(f"M {cv.pt(xy[ends[i, 0]])} L {cv.pt(xy[ends[i, 1]])}" for i in by_class[cls])
         opacity = fmt(style["opacity"]) if "opacity" in style else None
         if width > 0:
-            body.append("    " + element("path", [("d", d), ("stroke", colour),
-                                                  ("stroke-width", fmt(width)),
-                                                  ("stroke-opacity", opacity),
-                                                  ("data-class", cls)]))
+            out.append("    " + element("path", [("d", d), ("stroke", style["stroke"]),
+                                                 ("stroke-width", fmt(width)),
+                                                 ("stroke-opacity", opacity),
+                                                 ("data-class", cls)]))
         if "image" in style:
-            images.extend(_edge_images(xy, ends, by_class[cls], style, unit, fmt, href))
-    body.append("  </g>")
+            images.extend(_edge_images(xy, ends, by_class[cls], style, cv.unit, fmt, cv.href))
+    out.append("  </g>")
     if images:
-        body.append('  <g id="edge-images">')
-        body.extend(images)
-        body.append("  </g>")
+        out += ['  <g id="edge-images">'] + images + ["  </g>"]
+    return out
 
-    # --- vertex markers and images ----------------------------------------------------------
-    if vertex_decos:
-        prims = vertex_primitives(ref, drawing) if ref else {}
-        names = [p.name for p in ref.primitives] if ref else []
-        first_dir = _first_directions(drawing, xy, ends)
-        marks: list[str] = []
-        shapes: dict[tuple, str] = {}
-        for v, vid in enumerate(ids):
-            prim = names[prims[vid]] if vid in prims else None
-            style = _style_for(vertex_decos, *([prim] if prim else []))
-            if not style:
-                continue
-            x, y = fmt(xy[v, 0]), fmt(-xy[v, 1])
-            if "image" in style:
-                s = unit * float(style.get("scale", 1.0)) / 2
-                turn = None
-                if style.get("rotate") and vid in first_dir:
-                    turn = f"rotate({fmt(-first_dir[vid])} {x} {y})"
-                marks.append("    " + element("image", [
-                    ("xlink:href", href(style["image"])), ("x", fmt(xy[v, 0] - s)),
-                    ("y", fmt(-xy[v, 1] - s)), ("width", fmt(2 * s)), ("height", fmt(2 * s)),
-                    ("transform", turn)]))
-            marker = style.get("marker", "circle" if ("size" in style or "fill" in style) else "none")
-            if marker == "none":
-                continue
-            size = float(style.get("size", 4 * STROKE_WIDTH * unit))
-            key = (marker, size, style.get("fill", "#1a1a1a"), style.get("stroke", "none"))
-            if key not in shapes:
-                shapes[key] = f"marker{len(shapes)}"
-                defs.append("    " + element("g", [("id", shapes[key])], _marker(*key, fmt, unit)))
-            marks.append("    " + element("use", [("xlink:href", f"#{shapes[key]}"), ("x", x),
-                                                  ("y", y)]))
-        if marks:
-            body.append('  <g id="vertices">')
-            body.extend(marks)
-            body.append("  </g>")
 
-    out = head
-    if defs:
-        out += ["  <defs>"] + defs + ["  </defs>"]
-    return "\n".join(out + body + ["</svg>"]) + "\n"
+def _vertices_group(cv: _Canvas) -> list[str]:
+    """Vertex images and markers, where decorations ask for them."""
+    from ..verifier import vertex_primitives
+
+    vertex_decos = decorations(cv.ref, "vertex")
+    if not vertex_decos:
+        return []
+    ref, fmt, xy = cv.ref, cv.fmt, cv.xy
+    prims = vertex_primitives(ref, cv.drawing) if ref else {}
+    names = [p.name for p in ref.primitives] if ref else []
+    first_dir = _first_directions(cv.drawing, xy, cv.ends)
+    marks: list[str] = []
+    shapes: dict[tuple, str] = {}
+    for v, vid in enumerate(cv.ids):
+        prim = names[prims[vid]] if vid in prims else None
+        style = _style_for(vertex_decos, *([prim] if prim else []))
+        if not style:
+            continue
+        x, y = fmt(xy[v, 0]), fmt(-xy[v, 1])
+        if "image" in style:
+            s = cv.unit * float(style.get("scale", 1.0)) / 2
+            turn = None
+            if style.get("rotate") and vid in first_dir:
+                turn = f"rotate({fmt(-first_dir[vid])} {x} {y})"
+            marks.append("    " + element("image", [
+                ("xlink:href", cv.href(style["image"])), ("x", fmt(xy[v, 0] - s)),
+                ("y", fmt(-xy[v, 1] - s)), ("width", fmt(2 * s)), ("height", fmt(2 * s)),
+                ("transform", turn)]))
+        marker = style.get("marker", "circle" if ("size" in style or "fill" in style) else "none")
+        if marker == "none":
+            continue
+        size = float(style.get("size", 4 * STROKE_WIDTH * cv.unit))
+        key = (marker, size, style.get("fill", "#1a1a1a"), style.get("stroke", "none"))
+        if key not in shapes:
+            shapes[key] = f"marker{len(shapes)}"
+            cv.defs.append("    " + element("g", [("id", shapes[key])],
+                                            _marker(*key, fmt, cv.unit)))
+        marks.append("    " + element("use", [("xlink:href", f"#{shapes[key]}"), ("x", x),
+                                              ("y", y)]))
+    return ['  <g id="vertices">'] + marks + ["  </g>"] if marks else []
 
 
 def _marker(shape: str, size: float, fill: str, stroke: str, fmt, unit: float) -> str:

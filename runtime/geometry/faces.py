@@ -1,12 +1,11 @@
 """The faces of a straight-line drawing, found geometrically (not from its labels).
 
-Half-edge `2e` walks edge `e` from `u` to `v` and `2e + 1` back. Around each vertex the
-outgoing half-edges are sorted counter-clockwise by angle; the face to the left of `u→v`
-continues at `v` with the outgoing half-edge just clockwise of `v→u`. Every walk so found is a
-boundary cycle. Each connected component has one outer cycle (the one with the least signed
-area: negative, or zero for a tree); its other cycles bound faces of their own. A component's
-outer cycle is a hole in the innermost bounded face of another component that contains it, or
-in the unbounded face. The results only mean something for a drawing with no crossings.
+The boundary cycles come from the kernel's face walk (grammar_lang.algorithms.faces: half-edge
+`2e` walks edge `e` from `u` to `v` and `2e + 1` back, each with its face on its left). Each
+connected component has one outer cycle (the one with the least signed area: negative, or zero
+for a tree); its other cycles bound faces of their own. A component's outer cycle is a hole in
+the innermost bounded face of another component that contains it, or in the unbounded face.
+The results only mean something for a drawing with no crossings.
 """
 
 from __future__ import annotations
@@ -15,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+
+from grammar_lang.algorithms.components import component_labels
+from grammar_lang.algorithms.faces import boundary_cycles, half_ends
 
 UNBOUNDED = 0
 
@@ -37,52 +37,12 @@ class Faces:
     faces: tuple[Face, ...]               # faces[0] is the unbounded face
     face_of_cycle: np.ndarray             # cycle → the face it bounds (from inside or as a hole)
 
-def half_ends(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Start and end vertex of every half-edge, for edges given as an (m, 2) index array."""
-    src = np.empty(2 * len(edges), dtype=np.int64)
-    src[0::2], src[1::2] = edges[:, 0], edges[:, 1]
-    dst = np.empty_like(src)
-    dst[0::2], dst[1::2] = edges[:, 1], edges[:, 0]
-    return src, dst
-
-
-def next_in_face(xy: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """For each half-edge, the next half-edge along the face on its left."""
-    src, dst = half_ends(edges)
-    d = xy[dst] - xy[src]
-    angle = np.arctan2(d[:, 1], d[:, 0])
-    order = np.lexsort((np.arange(len(src)), angle, src))   # by vertex, then angle ccw
-    s = src[order]
-    start = np.r_[True, s[1:] != s[:-1]]
-    end = np.r_[start[1:], True]
-    # Each group's last position, spread back over the group.
-    last = np.flatnonzero(end)
-    group_end = np.repeat(last, np.diff(np.r_[-1, last]))
-    pos = np.arange(len(s))
-    prev_pos = np.where(start, group_end, pos - 1)
-    clockwise = np.empty_like(src)
-    clockwise[order] = order[prev_pos]
-    twin = np.arange(len(src)) ^ 1
-    return clockwise[twin]
-
-
 def compute_faces(xy: np.ndarray, edges: np.ndarray) -> Faces:
     """Faces of the drawing with vertex positions `xy` (n, 2) and `edges` (m, 2) of indices."""
     xy = np.asarray(xy, dtype=float).reshape(-1, 2)
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     n, m = len(xy), len(edges)
-    nxt = next_in_face(xy, edges) if m else np.zeros(0, dtype=np.int64)
-    cycle_of = np.full(2 * m, -1, dtype=np.int64)
-    cycles: list[tuple[int, ...]] = []
-    for h0 in range(2 * m):
-        if cycle_of[h0] >= 0:
-            continue
-        walk, h = [], h0
-        while cycle_of[h] < 0:
-            cycle_of[h] = len(cycles)
-            walk.append(h)
-            h = int(nxt[h])
-        cycles.append(tuple(walk))
+    cycle_of, cycles = boundary_cycles(xy, edges)
     src, dst = half_ends(edges)
     # About a vertex of the drawing, so far-off drawings keep their precision.
     q = xy - xy[0] if n else xy
@@ -90,9 +50,7 @@ def compute_faces(xy: np.ndarray, edges: np.ndarray) -> Faces:
         cross = q[src, 0] * q[dst, 1] - q[dst, 0] * q[src, 1]
     area = np.bincount(cycle_of, weights=cross, minlength=len(cycles)) / 2.0 if m else np.zeros(0)
 
-    graph = coo_matrix((np.ones(m), (edges[:, 0], edges[:, 1])), shape=(n, n))
-    _, component = connected_components(graph, directed=False)
-    n_comp = int(component.max()) + 1 if n else 0
+    n_comp, component = component_labels(n, edges)
     outer = np.full(n_comp, -1, dtype=np.int64)
     for c, cyc in enumerate(cycles):
         k = component[src[cyc[0]]]

@@ -12,7 +12,9 @@ The DPO gluing condition is the dangling condition: an interface slot must not b
 vertex inside the match, since that edge would lose its end. In SPO mode such an edge is
 deleted instead and both its slots are left open in the result.
 
-`plan` only computes the change (`Change`); geometry decides the positions and `commit` applies
+The gluing of the replacement into the hole is the kernel's (grammar_lang.algorithms.dpo); this
+module finds the contexts (dangling condition, SPO, the host edges matched by wires) and
+applies the change. `plan` only computes the change (`Change`); geometry decides the positions and `commit` applies
 it through the host's journal, returning the operations so that a step can be undone and redone.
 """
 
@@ -21,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from grammar_lang import boundary as bd
+from grammar_lang.algorithms.dpo import join_interface
 from grammar_lang.graph import Side, Slot
 from grammar_lang.rules import Rule
 
@@ -97,32 +100,21 @@ def plan(host: Host, rule: DirectedRule, match: Match, spo: bool = False) -> Cha
     cut = tuple(s0 for s0, _ in match.wmap)
     for s0, s1 in match.wmap:
         partner[s0] = partner[s1] = None
-    wire_end: dict[int, list] = {}
+    contexts, ends = [], []
     for p_slot, r_slot in rule.interface:
         c = match.partner_of(host, p_slot)
         if c is not None and c[0] in gone:
             if not spo:
                 raise ValueError("dangling edge in DPO mode; the match should have been refused")
             c = None
-        if r_slot[0] < 0:
-            # A wire of the replacement joins the contexts at its two ends directly.
-            wire_end.setdefault(-1 - r_slot[0], [None, None])[r_slot[1]] = c
-            continue
-        a = (ids[r_slot[0]], r_slot[1])
-        if c is None:
-            partner[a] = None
-            continue
+        contexts.append(c)
+        ends.append(r_slot if r_slot[0] < 0 else (ids[r_slot[0]], r_slot[1]))
+    joined, opened = join_interface(contexts, ends)
+    for a, c in joined:
         glue.append((a, c))
         partner[a], partner[c] = c, a
-    for e in sorted(wire_end):
-        c0, c1 = wire_end[e]
-        if c0 is not None and c1 is not None:
-            glue.append((c0, c1))
-            partner[c0], partner[c1] = c1, c0
-        else:
-            for c in (c0, c1):
-                if c is not None:
-                    partner[c] = None
+    for s in opened:
+        partner[s] = None
     for k, (v, prim) in enumerate(new):
         for i in range(len(host.t.rings[prim])):
             partner.setdefault((v, i), None)

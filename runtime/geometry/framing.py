@@ -10,7 +10,7 @@ from __future__ import annotations
 from grammar_lang.diagnostics import error
 from grammar_lang.frame import Frame, border_labels, border_primitives
 
-from .host import Host
+from ..engine.host import Host
 
 
 def place_frame(host: Host, frame: Frame) -> None:

@@ -7,7 +7,8 @@ history, `reset` and `open` included, so `undo` always leads back to the start.
 
 On a terminal the loop reads lines with prompt_toolkit (history across runs, completion) and
 prints through rich; otherwise it reads commands line by line, prints plain text (errors on
-stderr) and exits 1 if any command failed. The commands themselves are in repl_commands.
+stderr) and exits 1 if any command failed. The commands themselves are in
+runtime.repl.commands, tab completion in runtime.repl.complete.
 """
 
 from __future__ import annotations
@@ -24,10 +25,10 @@ from typing import TextIO
 from grammar_lang.diagnostics import UserError, did_you_mean, error
 from grammar_lang.rules import Grammar, Rule
 
-from .costs import parse_cost
-from .generate import Engine
-from .rewrite import DirectedRule
-from .run_cmd import DEFAULT_STEPS, _parse_limits, load_grammar, write_drawing
+from ..engine.costs import parse_cost
+from ..engine.generate import Engine
+from ..engine.rewrite import DirectedRule
+from ..run_cmd import DEFAULT_STEPS, _parse_limits, load_grammar, write_drawing
 
 PROMPT = "gg> "
 
@@ -181,7 +182,7 @@ def split_line(line: str) -> list[str]:
 
 def execute(session: Session, line: str) -> bool:
     """Run one command line; True when it succeeded. Never raises for anything typed."""
-    from .repl_commands import dispatch
+    from .commands import dispatch
     try:
         words = split_line(line)
         if not words:
@@ -225,7 +226,7 @@ def run_terminal(session: Session) -> int:
     from prompt_toolkit import PromptSession
     from prompt_toolkit.history import FileHistory, InMemoryHistory
 
-    from .repl_complete import completer
+    from .complete import completer
     try:
         state_dir().mkdir(parents=True, exist_ok=True)
         history = FileHistory(str(state_dir() / "history"))

@@ -16,11 +16,11 @@ from grammar_lang import boundary as bd
 from grammar_lang.diagnostics import did_you_mean, error
 from grammar_lang.graph import Side, face_walk
 
-from .drawing import load_drawing
-from .matching import find_match
-from .rejections import Rejection
-from .repl import Quit, Session
-from .verifier import check_drawing
+from ..output.drawing import load_drawing
+from ..engine.matching import find_match
+from ..engine.rejections import Rejection
+from .session import Quit, Session
+from ..verifier import check_drawing
 
 # How many matches, components or failures a listing shows before summing up the rest.
 SHOWN = 20

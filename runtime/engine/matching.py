@@ -1,4 +1,5 @@
-"""Anchored matching of a rule side in the host.
+"""Anchored matching of a rule side in the host: the kernel's walk (grammar_lang.algorithms.
+matching) with the runtime's search over spliced sides on top.
 
 A vertex's primitive fixes its whole ring, so once one pattern vertex is mapped to a host vertex
 of the same primitive, following the pattern's glued slots through the host's links maps every
@@ -17,6 +18,7 @@ from typing import Iterator
 
 import numpy as np
 
+from grammar_lang.algorithms.matching import extend, walk_plans
 from grammar_lang.graph import Side, Slot
 
 from .host import Host
@@ -45,40 +47,13 @@ class Pattern:
     @staticmethod
     def build(side: Side, rings=()) -> "Pattern":
         partner = side.partner()
-        comps = []
-        for verts in side.components():
-            plans = []
-            for anchor in verts:
-                steps, seen, queue = [], {anchor}, [anchor]
-                done_edges = set()
-                while queue:
-                    u = queue.pop(0)
-                    ring_len = _ring_len(side, u, partner)
-                    for i in range(ring_len):
-                        s = partner.get((u, i))
-                        if s is None:
-                            continue
-                        key = min((u, i), s)
-                        if key in done_edges:
-                            continue
-                        done_edges.add(key)
-                        steps.append((u, i, s[0], s[1]))
-                        if s[0] not in seen:
-                            seen.add(s[0])
-                            queue.append(s[0])
-                plans.append(tuple(steps))
-            comps.append(Component(tuple(verts), tuple(plans)))
+        comps = tuple(Component(tuple(verts), walk_plans(verts, partner))
+                      for verts in side.components())
         opens = tuple(side.open_slots())
         wire_slots = tuple(
             tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
             for tok in side.wires)
-        return Pattern(side, tuple(comps), opens, wire_slots)
-
-
-def _ring_len(side: Side, u: int, partner: dict) -> int:
-    # The side does not carry rings; the largest slot index used bounds the walk.
-    used = [i for (v, i) in partner if v == u]
-    return max(used) + 1 if used else 0
+        return Pattern(side, comps, opens, wire_slots)
 
 
 @dataclass(frozen=True)
@@ -94,29 +69,6 @@ class Match:
         if s[0] < 0:
             return self.wmap[-1 - s[0]][s[1]]
         return host.link[self.vmap[s[0]]][s[1]]
-
-
-def _extend(host: Host, side: Side, steps, anchor: int, h: int, vmap: dict) -> bool:
-    link, prim = host.link, host.prim
-    want = side.vertices
-    if prim[h] != want[anchor] or h in vmap.values():
-        return False
-    vmap[anchor] = h
-    used = set(vmap.values())
-    for u, i, w, j in steps:
-        s = link[vmap[u]][i]
-        if s is None or s[1] != j:
-            return False
-        x = s[0]
-        if w in vmap:
-            if vmap[w] != x:
-                return False
-        else:
-            if prim[x] != want[w] or x in used:
-                return False
-            vmap[w] = x
-            used.add(x)
-    return True
 
 
 def _glue_ok(host: Host, pattern: Pattern, vmap: dict, spo: bool) -> bool:
@@ -197,7 +149,7 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
         if ci and not budget.spend():
             return
         trial = dict(vmap)
-        if _extend(host, pattern.side, comp.plans[k], anchor, h, trial):
+        if extend(host.link, host.prim, pattern.side.vertices, comp.plans[k], anchor, h, trial):
             yield from _search(host, pattern, ci + 1, trial, spo, rng, budget)
 
 

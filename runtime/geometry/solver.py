@@ -32,9 +32,11 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from .host import Host, Point
-from .rejections import Rejection
-from .rewrite import Change
+from grammar_lang.algorithms.components import DisjointSet
+
+from ..engine.host import Host, Point
+from ..engine.rejections import Rejection
+from ..engine.rewrite import Change
 from .spatial import seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
@@ -119,19 +121,12 @@ class Solver:
         those its part of the new side is glued to (so the parts of a spliced side go to their
         own places, near the match, not all to its middle), else the change's centre."""
         host = self.host
-        parent = {v: v for v in self.new_prim}
-
-        def root(v):
-            while parent[v] != v:
-                parent[v] = parent[parent[v]]
-                v = parent[v]
-            return v
-
+        parts = DisjointSet(self.new_prim)
         own: dict[int, list[Point]] = {v: [] for v in self.new_prim}
         for a, b in self.change.glue:
             na, nb = a[0] in self.new_prim, b[0] in self.new_prim
             if na and nb:
-                parent[root(a[0])] = root(b[0])
+                parts.union(a[0], b[0])
             elif na != nb:
                 (v, i), old = (a, b[0]) if na else (b, a[0])
                 # A structure stood on a frame's side is not aimed at the ends of the stretch
@@ -141,10 +136,10 @@ class Solver:
                     own[v].append(host.pos[old])
         part: dict[int, list[Point]] = {}
         for v in sorted(self.new_prim):
-            part.setdefault(root(v), []).extend(own[v])
+            part.setdefault(parts.find(v), []).extend(own[v])
         aim = {}
         for v in self.new_prim:
-            pts = own[v] or part[root(v)]
+            pts = own[v] or part[parts.find(v)]
             if pts:
                 aim[v] = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
         return aim
@@ -559,7 +554,7 @@ def place_side(host: Host, side, rng: np.random.Generator,
     for which `tries` rounds of samples find no placement is placed keeping only the
     directions and positive lengths (no class ranges, fixed lengths, tiles or crossings). `host` must
     be empty; it is left unchanged. ValueError when not even that is possible."""
-    from .rewrite import Change
+    from ..engine.rewrite import Change
     assert len(host) == 0, "place_side draws on an empty host"
     out, strict = [], True
     for comp in side.components():

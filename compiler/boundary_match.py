@@ -7,6 +7,9 @@ run of unmatched half-edges between them is a closed substring of its own, found
 its inner turns are T's, and its closing gap is whatever makes it wind once (P − N = 1). That is
 the paper's `∨ⁿ ∂L ∧ⁿ` freedom: a splice `A|B → A∧ⁿB∨ⁿ⁺¹` may put any number of turns on either
 side of the spliced-in substring, so only the total between matched half-edges is constrained.
+
+This is matching of boundary strings; matching a rule side in a graph is
+grammar_lang.algorithms.matching.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from typing import Callable
 
 import numpy as np
 
-from .host import Host, Point, Slot, Tables
+from ..engine.host import Host, Point, Slot, Tables
 
 
 def _angle(t: Tables, p: int, i: int) -> float:

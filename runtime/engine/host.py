@@ -15,15 +15,17 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from grammar_lang.algorithms.components import glued_components
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
+from grammar_lang.vocabulary import Vocabular, Vocabulary
 
-from .drawing import DEdge, Drawing, DVertex
-from .spatial import Grid
+from ..output.drawing import DEdge, Drawing, DVertex
+from ..geometry.spatial import Grid
 
 Slot = tuple[int, int]
 Point = tuple[float, float]
@@ -33,8 +35,9 @@ LEVEL_TOL = 1e-7
 
 
 @dataclass(frozen=True)
-class Tables:
-    """What the header says about each primitive slot, precomputed as plain tuples."""
+class Tables(Vocabular):
+    """What the header says about each primitive slot, precomputed as plain tuples, with the
+    header's vocabulary (its unit 1 where the header gives none)."""
 
     rings: tuple[tuple[int, ...], ...]
     direction: tuple[tuple[Point, ...], ...]   # unit vector pointing away from the vertex
@@ -44,11 +47,9 @@ class Tables:
     outer: tuple[str | None, ...]              # face label seen just below direction 180°
     # Per edge label: (min, max, fixed or None, tile or None)
     lengths: tuple[tuple[float, float, float | None, float | None], ...]
-    label_names: tuple[str, ...]
     label_class: tuple[str, ...]
     label_faces: tuple[tuple[str, str], ...]
-    exterior: str
-    unit: float
+    vocabulary: Vocabulary
     # Per edge label: the example's median length (nan when unknown): where new edges are drawn.
     typical: tuple[float, ...] = ()
 
@@ -93,9 +94,9 @@ class Tables:
             fixed = lab.length if (c.rigid and lab.length) else c.fixed
             lengths.append((float(c.min_length), float(c.max_length), fixed, c.tile))
         return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
-                      tuple(outer), tuple(lengths), tuple(l.name for l in labels),
-                      tuple(l.cls for l in labels), tuple((l.left, l.right) for l in labels),
-                      header.exterior, unit,
+                      tuple(outer), tuple(lengths), tuple(l.cls for l in labels),
+                      tuple((l.left, l.right) for l in labels),
+                      replace(header.vocabulary, unit=unit),
                       tuple(math.nan if l.typical is None else l.typical for l in labels))
 
 
@@ -142,7 +143,7 @@ class Host:
         self.n_edges = 0
         self.n_open = 0
         self.journal: list[tuple] | None = None
-        self.pinned: frozenset[int] = frozenset()   # the frame's corners (runtime/framing.py)
+        self.pinned: frozenset[int] = frozenset()   # the frame's corners (runtime/geometry/framing.py)
         self.frame = None                           # the placed Frame, when there is one
         self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
         self.border_labels: frozenset[int] = frozenset()
@@ -311,22 +312,8 @@ class Host:
         return Drawing(verts, tuple(edges), dict(meta or {}))
 
     def components(self) -> list[list[int]]:
-        seen: set[int] = set()
-        out = []
-        for v in sorted(self.prim):
-            if v in seen:
-                continue
-            comp, stack = [], [v]
-            seen.add(v)
-            while stack:
-                x = stack.pop()
-                comp.append(x)
-                for w in self.neighbours(x):
-                    if w not in seen:
-                        seen.add(w)
-                        stack.append(w)
-            out.append(sorted(comp))
-        return out
+        """Vertex sets of the connected components, in order of their smallest vertex."""
+        return glued_components(self.prim, self.edges())
 
     def check_consistency(self) -> list[str]:
         """Recount every index from scratch; the list of disagreements (empty when sound)."""

@@ -1,0 +1,72 @@
+"""Union-find and connected components, written once for the whole project.
+
+Two forms, because the callers are of two sizes. `DisjointSet` and `components` are plain
+Python over a few dozen items (a rule side, a rewrite's new vertices), where building a scipy
+matrix would cost more than the walk; `component_labels` hands whole drawings (thousands of
+segments, as numpy arrays) to scipy's compiled `connected_components`.
+"""
+
+from __future__ import annotations
+
+from typing import Hashable, Iterable, TypeVar
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+T = TypeVar("T", bound=Hashable)
+
+
+class DisjointSet:
+    """Union-find with path halving. `union` keeps the smaller root, so with comparable items a
+    set's root is its smallest member (callers order their groups by it)."""
+
+    __slots__ = ("parent",)
+
+    def __init__(self, items: Iterable[T] = ()):
+        self.parent: dict = {x: x for x in items}
+
+    def find(self, x: T) -> T:
+        parent = self.parent
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    def union(self, a: T, b: T) -> None:
+        ra, rb = self.find(a), self.find(b)
+        if ra != rb:
+            if rb < ra:
+                ra, rb = rb, ra
+            self.parent[rb] = ra
+
+    def groups(self) -> list[list]:
+        """The sets, each in the order its members were added, in the order of their roots."""
+        out: dict = {}
+        for x in self.parent:
+            out.setdefault(self.find(x), []).append(x)
+        return [out[k] for k in sorted(out)]
+
+
+def components(items: Iterable[T], pairs: Iterable[tuple[T, T]]) -> list[list[T]]:
+    """The connected components of the graph on `items` with edges `pairs`: each component
+    sorted, the components in order of their smallest member."""
+    ds = DisjointSet(sorted(items))
+    for a, b in pairs:
+        ds.union(a, b)
+    return ds.groups()
+
+
+def glued_components(items: Iterable[T],
+                     edges: Iterable[tuple[T, int, T, int]]) -> list[list[T]]:
+    """`components` for graphs whose edges glue slots: (vertex, slot, vertex, slot)."""
+    return components(items, ((v, w) for v, _, w, _ in edges))
+
+
+def component_labels(n: int, ends: np.ndarray) -> tuple[int, np.ndarray]:
+    """How many connected components the graph on `n` vertices with the undirected edges of
+    the (m, 2) array `ends` has, and each vertex's component number (scipy's numbering)."""
+    ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+    graph = coo_matrix((np.ones(len(ends)), (ends[:, 0], ends[:, 1])), shape=(n, n))
+    count, labels = connected_components(graph, directed=False)
+    return int(count), labels

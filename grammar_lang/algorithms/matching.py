@@ -1,0 +1,86 @@
+"""Anchored matching of a rule side in a host graph (paper §6.1), for the compiler's
+verification (compiler.occurrence) and the runtime's engine (runtime.engine.matching).
+
+A vertex's primitive fixes its whole ring, so once one pattern vertex is mapped to a host
+vertex of the same primitive, following the pattern's glued slots through the host's links maps
+every other vertex of its component, or fails, in time linear in the pattern. A host is read
+through two indexables: `link[v][i]`, the (vertex, slot) glued to slot i of v or None, and
+`prim[v]`, v's primitive. Whether a complete placement is a match beyond that (the runtime's
+dangling condition, the compiler's bare-loop test) is the caller's feasibility hook.
+
+The runtime's search over spliced sides (several components and wires, looked for near each
+other through its spatial grid, with a budget) is a layer over `extend`; it stays in the
+runtime because it needs the drawing's geometry.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Iterable, Iterator, Mapping, Sequence
+
+Slot = tuple[int, int]
+Step = tuple[int, int, int, int]       # from mapped u follow slot i to (w, j): w a w-primitive
+
+
+def walk_plans(vertices: Iterable[int], partner: Mapping[Slot, Slot]
+               ) -> tuple[tuple[Step, ...], ...]:
+    """For each vertex of a connected pattern taken as the anchor, the breadth-first walk that
+    maps the rest: every glued slot pair once, a vertex's slots in ring order."""
+    slots: dict[int, list[int]] = {}
+    for v, i in sorted(partner):
+        slots.setdefault(v, []).append(i)
+    plans = []
+    for anchor in vertices:
+        steps: list[Step] = []
+        seen, queue, done = {anchor}, [anchor], set()
+        for u in queue:                        # the queue grows while it is read
+            for i in slots.get(u, ()):
+                s = partner[(u, i)]
+                key = min((u, i), s)
+                if key in done:
+                    continue
+                done.add(key)
+                steps.append((u, i, s[0], s[1]))
+                if s[0] not in seen:
+                    seen.add(s[0])
+                    queue.append(s[0])
+        plans.append(tuple(steps))
+    return tuple(plans)
+
+
+def extend(link, prim, want: Sequence[int], steps: Sequence[Step], anchor: int, h: int,
+           vmap: dict[int, int]) -> bool:
+    """Map pattern vertex `anchor` to host vertex `h` and walk `steps` from it, adding to
+    `vmap` (pattern → host, injective); False as soon as the host disagrees."""
+    if prim[h] != want[anchor] or h in vmap.values():
+        return False
+    vmap[anchor] = h
+    used = set(vmap.values())
+    for u, i, w, j in steps:
+        s = link[vmap[u]][i]
+        if s is None or s[1] != j:
+            return False
+        x = s[0]
+        if w in vmap:
+            if vmap[w] != x:
+                return False
+        else:
+            if prim[x] != want[w] or x in used:
+                return False
+            vmap[w] = x
+            used.add(x)
+    return True
+
+
+def anchored_matches(link, prim, want: Sequence[int], plans: Sequence[Sequence[Step]],
+                     roots: Iterable[tuple[int, int]],
+                     feasible: Callable[[list[int]], bool] | None = None
+                     ) -> Iterator[list[int]]:
+    """The placements (pattern vertex → host vertex) of a connected pattern that map pattern
+    vertex r to host vertex h, for each (r, h) of `roots` in turn, and pass `feasible`."""
+    for r, h in roots:
+        vmap: dict[int, int] = {}
+        if not extend(link, prim, want, plans[r], r, h, vmap):
+            continue
+        img = [vmap[v] for v in range(len(want))]
+        if feasible is None or feasible(img):
+            yield img

@@ -1,0 +1,2 @@
+"""What a run writes: the drawing value and its JSON (`drawing`), SVG (`svg_out`, and
+`free_svg` for hand-written productions) and GraphML (`graphml_out`)."""
