@@ -214,7 +214,10 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
         angs = [a for _, a in members]
         clusters = _leader_clusters(angs, period, opts.angle_tolerance)
         means = [_circular_mean([angs[j] for j in cl], period) for cl in clusters]
-        snapped = [_snap(m, opts.snap_angle, opts.angle_tolerance, period) for m in means]
+        # A rigid edge keeps its exact vector: snapped, the cycles of a rigid part (a
+        # blossom, a module) would no longer close, and no placement could exist.
+        snap = 0.0 if len(gk) > 2 else opts.snap_angle
+        snapped = [_snap(m, snap, opts.angle_tolerance, period) for m in means]
         # Two clusters may not snap onto one angle: keep their means instead.
         if len(set(snapped)) != len(snapped):
             snapped = [round(m, 6) % period for m in means]

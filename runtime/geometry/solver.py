@@ -42,6 +42,12 @@ from .spatial import seg_near
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
 NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
+# A new vertex glued to no old one (in a structure made whole, or stood on a frame's side) has
+# only the change's centre to aim at: its place comes from the lengths, or the projection
+# would squeeze the structure towards that point.
+LOOSE_POS = 100.0
+OLD, GLUED, LOOSE = 0, 1, 2          # kinds of free vertex in a system's shape
+POS_SCALE = np.array([OLD_POS, NEW_POS, LOOSE_POS])
 # A frame's sides are as long as the frame: a structure standing on one takes what it needs
 # and the stretches of bare side beside it take the rest, so their lengths are cheapest.
 FRAME_SIDE = 100.0
@@ -138,6 +144,7 @@ class Solver:
         for v in sorted(self.new_prim):
             part.setdefault(parts.find(v), []).extend(own[v])
         aim = {}
+        self.glued = frozenset(v for v in self.new_prim if own[v])
         for v in self.new_prim:
             pts = own[v] or part[parts.find(v)]
             if pts:
@@ -187,8 +194,25 @@ class Solver:
         cands = sorted(near - fs - self.host.pinned)
         if not cands:
             return False
-        free.append(cands[int(self.rng.integers(len(cands)))])
+        free.extend(self._rigid_part(cands[int(self.rng.integers(len(cands)))], fs))
         return True
+
+    def _rigid_part(self, v: int, free: set[int]) -> list[int]:
+        """`v` and the old vertices joined to it by edges of fixed length (a rigid part):
+        they move as one unit, as the paper's merged rigid parts do, since freeing one of
+        them alone leaves it pinned by its fixed edges to the rest."""
+        t, pinned = self.host.t, self.host.pinned
+        part, todo, seen = [], [v], {v}
+        while todo:
+            u = todo.pop()
+            part.append(u)
+            pu = self.prim(u)
+            for i, (w, _) in self.adjacency(u):
+                if w not in seen and w not in free and w not in pinned \
+                        and w not in self.new_prim and t.lengths[t.label[pu][i]][2] is not None:
+                    seen.add(w)
+                    todo.append(w)
+        return part
 
     # --- the linear system ------------------------------------------------------------------
     def _system(self, free: list[int]):
@@ -207,7 +231,8 @@ class Solver:
             if v not in idx and w not in idx:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
-        shape = (tuple(v in host.prim for v in free),
+        shape = (tuple(OLD if v in host.prim else GLUED if v in self.glued else LOOSE
+                       for v in free),
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
                         t.lengths[lab][2] if self.strict else None,
                         lab in host.side_labels) for v, i, w, j, d, lab in edges))
@@ -482,11 +507,11 @@ class SystemCache:
         return fact
 
 
-def _factorise(old: tuple[bool, ...], edges) -> Factor:
+def _factorise(kind: tuple[int, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
     p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
     the shape is (free index of v or −1, of w or −1, direction, fixed length, frame side)."""
-    nF, nE = len(old), len(edges)
+    nF, nE = len(kind), len(edges)
     fixed = [e for e, (_, _, _, f, _) in enumerate(edges) if f is not None]
     A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
     for e, (iv, iw, d, _, _) in enumerate(edges):
@@ -498,7 +523,7 @@ def _factorise(old: tuple[bool, ...], edges) -> Factor:
             A[2 * e + c, 2 * nF + e] = -d[c]
     A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
     scale = np.empty(2 * nF + nE)
-    scale[:2 * nF] = np.repeat(np.where(old, OLD_POS, NEW_POS), 2)
+    scale[:2 * nF] = np.repeat(POS_SCALE[np.asarray(kind, dtype=int)], 2)
     scale[2 * nF:] = [FRAME_SIDE if side else LENGTH for *_, side in edges]
     M = A * scale
     Mp = np.linalg.pinv(M, rcond=1e-10)
