@@ -166,3 +166,22 @@ def test_an_extent_keeps_the_proportions_of_a_slanted_frame(castle):
     assert parse_extent("800x600", g) == (800.0, 600.0)
     with pytest.raises(UserError, match="slanted"):
         parse_extent("800x300", g)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_in_a_frame_nothing_floats_but_what_the_example_has_free_standing(seed):
+    """Every component apart from the frame's own is one a starter makes (a window in a
+    tower), never a part cut off a structure (a roof lifted off its tower)."""
+    from collections import Counter
+    res = compile_example(load_example(SCENES["castle-scene"]))
+    g = res.grammar
+    free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
+    eng = Engine(g, seed=seed)
+    eng.run(120)
+    host = eng.host
+    comps = host.components()
+    framed = [c for c in comps if host.pinned & set(c)]
+    assert len(framed) == 1
+    for c in comps:
+        if c is not framed[0]:
+            assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
