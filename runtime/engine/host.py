@@ -103,8 +103,12 @@ class Tables(Vocabular):
 def grid_cell(t: Tables) -> float:
     """The grid's cell side: the unit, or a quarter of the longest edge a label allows when
     that is longer (compiled grammars allow 4 units, so this is their unit), so that no edge
-    fills more than a few cells however the unit and the lengths were edited."""
-    longest = max((hi for _, hi, _, _ in t.lengths if math.isfinite(hi)), default=0.0)
+    fills more than a few cells however the unit and the lengths were edited. A border's
+    edges are left out: a frame's sides are as long as the frame, and cells sized for them
+    would each hold hundreds of vertices (its few long edges are filed in many cells)."""
+    border = {c.name for c in t.vocabulary.classes if c.border}
+    longest = max((hi for (_, hi, _, _), cls in zip(t.lengths, t.label_class)
+                   if math.isfinite(hi) and cls not in border), default=0.0)
     return max(t.unit, longest / 4)
 
 
