@@ -44,6 +44,7 @@ def measure(name: str, steps: int | None) -> dict:
 
     from compiler.infer import compile_example
     from grammar_lang.loader import load_example
+    from runtime.engine.costs import default_cost
     from runtime.engine.generate import Engine
 
     n, seed, *_ = PAPER[name]
@@ -51,7 +52,8 @@ def measure(name: str, steps: int | None) -> dict:
     example = load_example(ILLUSTRATIONS / f"{name}.gg")
     result = compile_example(example)
     t_compile = time.perf_counter() - t0
-    engine = Engine(result.grammar, seed=seed)
+    engine = Engine(result.grammar, seed=seed,
+                    cost=default_cost(result.grammar.header, steps or n))
     summary = engine.run(steps or n)
     t_total = time.perf_counter() - t0
     host = engine.host

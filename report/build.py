@@ -129,7 +129,7 @@ def gallery(grammar: Grammar, seeds: list[int], steps: int) -> list[Shot]:
 
     if not 0 <= steps <= MAX_STEPS:
         raise error(f"--steps {steps} is out of range", None, f"give 0 to {MAX_STEPS}")
-    cost = parse_cost(None, grammar.header.labels, steps)
+    cost = parse_cost(None, grammar.header.labels, steps, grammar.header)
     out = []
     for seed in seeds:
         engine = Engine(grammar, seed, cost)

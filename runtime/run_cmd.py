@@ -39,8 +39,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="write K drawings with seeds S…S+K−1, named PATH-0001.svg …")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="parallel processes")
     p.add_argument("--cost", metavar="NAME[:ARGS]",
-                   help="Metropolis cost: size[:N] (default, N = steps), density:D, "
-                        "label:NAME[:F], none")
+                   help="Metropolis cost: size[:N] (default, N = steps), scene[:N] (the "
+                        "default in a frame: size plus the example's proportions), "
+                        "density:D, label:NAME[:F], none")
     p.add_argument("--temperature", type=float, default=1.0, metavar="T",
                    help="Metropolis temperature (default 1; 0 refuses every cost increase)")
     p.add_argument("--limit", action="append", default=[], metavar="PRIORITY=N",
@@ -164,7 +165,8 @@ def run_job(job: Job, progress=None) -> Summary | None:
     from .engine.costs import parse_cost       # numpy and the engine load only when a run starts,
     from .engine.generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
-                    parse_cost(job.cost, job.grammar.header.labels, job.steps),
+                    parse_cost(job.cost, job.grammar.header.labels, job.steps,
+                               job.grammar.header),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
                     extent=job.extent)
     summary = engine.run(job.steps, progress, stop=interrupt.requested)

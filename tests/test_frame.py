@@ -185,3 +185,20 @@ def test_in_a_frame_nothing_floats_but_what_the_example_has_free_standing(seed):
     for c in comps:
         if c is not framed[0]:
             assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_the_default_scene_cost_keeps_every_part_in_proportion(seed):
+    """In a frame the default cost holds each face label's share of the edges near the
+    example's: windows do not crowd out keeps and gates as the run grows, and none fades."""
+    from runtime.engine.costs import SceneCost, default_cost
+    g = compile_example(load_example(SCENES["castle-scene"])).grammar
+    cost = default_cost(g.header, 400)
+    assert isinstance(cost, SceneCost)
+    eng = Engine(g, seed=seed, cost=cost)
+    eng.run(400)
+    counts, edges = eng.host.label_count, eng.host.n_edges
+    assert len(eng.host) > 100
+    for ks, share in zip(cost.groups, cost.shares):
+        got = sum(counts[k] for k in ks) / edges
+        assert 0.75 * share <= got <= share / 0.75, (ks, share, got)     # size alone: 1.44×

@@ -7,9 +7,14 @@ proposed change before any geometry is solved, so a proposal the cost refuses co
 Built in (`--cost NAME[:ARG[:ARG]]`):
 - `size[:N]`: grow to about N vertices (default: the number of steps asked for): the cost is
   N − n below N and (n − N)/4 above;
+- `scene[:N]`: `size[:N]` plus the example's proportions of face labels (`SceneCost`); for a
+  grammar with a frame only;
 - `density:D`: about D vertices per unit² of the drawing's bounding box;
 - `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
 - `none`: accept every placeable proposal.
+
+The default is `size` with N = steps, and in a frame `scene`: `size` plus the example's
+proportions of face labels (see `SceneCost`).
 """
 
 from __future__ import annotations
@@ -77,6 +82,47 @@ class LabelCost:
         return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
 
 
+@dataclass(frozen=True)
+class SceneCost:
+    """The default in a frame: `size`, plus the example's proportions. Each face label's
+    share of the edges beside it is held near its share in the example (the edges beside a
+    window over all edges, say), so that as the run grows the cheap parts do not crowd out the
+    rest: |count − share·edges| per face label, in edges, added to the size term. The space
+    the frame holds (the face just inside it) is left out: it is beside everything."""
+
+    size: SizeCost
+    groups: tuple[tuple[int, ...], ...]     # per face label: the edge labels beside it
+    shares: tuple[float, ...]
+    name: str = "scene"
+
+    def value(self, s: Stats) -> float:
+        off = sum(abs(sum(s.label_count[k] for k in ks) - f * s.edges)
+                  for ks, f in zip(self.groups, self.shares))
+        return self.size.value(s) + off
+
+
+def default_cost(header, steps: int) -> Cost:
+    """`size` with N = steps; in a frame, `SceneCost` with the example's proportions, read
+    from the primitives' counts (each edge is seen from both of its ends)."""
+    size = SizeCost(steps)
+    if header is None or header.frame is None:
+        return size
+    per_label = [0.0] * len(header.labels)
+    for p in header.primitives:
+        for t in p.ring:
+            per_label[t >> 1] += p.count / 2
+    total = sum(per_label)
+    corner = header.primitives[header.frame.corners[0].prim]
+    space = {f for t in corner.ring for f in (header.labels[t >> 1].left,
+                                              header.labels[t >> 1].right)}
+    groups, shares = [], []
+    for face in sorted({f for l in header.labels for f in (l.left, l.right)} - space):
+        ks = tuple(k for k, l in enumerate(header.labels) if face in (l.left, l.right))
+        groups.append(ks)
+        shares.append(sum(per_label[k] for k in ks) / total if total else 0.0)
+    return SceneCost(size, tuple(groups), tuple(shares))
+
+
 def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
     """Accept with probability min(1, exp(−Δ/T)); `u` is a uniform draw in [0, 1)."""
     if delta <= 0:
@@ -86,27 +132,28 @@ def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
     return u < math.exp(-delta / temperature)
 
 
-def parse_cost(spec: str | None, labels, default_size: int) -> Cost:
+def parse_cost(spec: str | None, labels, default_size: int, header=None) -> Cost:
     """Parse `--cost NAME[:ARG[:ARG]]` against the grammar's edge labels (`Header.labels`);
-    user errors carry a hint."""
+    user errors carry a hint. No spec: `default_cost` (give the header for a framed one)."""
     if spec is None:
-        return SizeCost(default_size)
+        return default_cost(header, default_size)
     name, *args = spec.split(":")
     makers: dict[str, Callable[[list[str]], Cost]] = {
         "none": lambda a: NoCost(),
         "size": lambda a: SizeCost(_int(a[0], spec) if a else default_size),
         "density": lambda a: DensityCost(_float(a[0], spec)),
         "label": lambda a: _label(a, labels, spec),
+        "scene": lambda a: _scene(header, _int(a[0], spec) if a else default_size),
     }
     if name not in makers:
         from grammar_lang.diagnostics import did_you_mean
         raise error(f"unknown cost '{name}'", None,
                     did_you_mean(name, makers) or "costs: " + ", ".join(sorted(makers)))
-    most = {"none": 0, "size": 1, "density": 1, "label": 2}[name]
+    most = {"none": 0, "size": 1, "density": 1, "label": 2, "scene": 1}[name]
     if len(args) > most:
         raise error(f"--cost {spec}: '{name}' takes " + (f"at most {most} argument"
                     + ("s" if most > 1 else "") if most else "no arguments"), None,
-                    "costs: size[:N], density:D, label:NAME[:F], none")
+                    "costs: size[:N], scene[:N], density:D, label:NAME[:F], none")
     if name == "density" and not args:
         raise error("cost 'density' needs a target", None, "write e.g. --cost density:0.5")
     if name == "label" and not args:
@@ -135,6 +182,13 @@ def _label(args: list[str], labels, spec: str) -> Cost:
     if not 0 <= f <= 1:
         raise error(f"--cost {spec}: the fraction must be between 0 and 1")
     return LabelCost(tuple(chosen), f)
+
+
+def _scene(header, n: int) -> Cost:
+    if header is None or header.frame is None:
+        raise error("cost 'scene' needs a grammar with a frame", None,
+                    "draw the example inside a border loop, or use --cost size")
+    return default_cost(header, n)
 
 
 def _int(text: str, spec: str) -> int:

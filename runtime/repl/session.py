@@ -113,7 +113,8 @@ class Session:
                         f"run them with 'ggrun {Path(path).name} --steps N --out FILE.svg'")
         o = self.options
         try:
-            engine = Engine(grammar, o.seed, parse_cost(o.cost, grammar.header.labels, o.steps),
+            engine = Engine(grammar, o.seed, parse_cost(o.cost, grammar.header.labels, o.steps,
+                                                      grammar.header),
                             o.temperature, bidirectional=o.bidirectional, limits=dict(o.limits))
         except ValueError as exc:
             raise error(f"cannot run '{Path(path).name}': {exc}", None,
