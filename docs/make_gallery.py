@@ -54,8 +54,8 @@ def summary(res: subprocess.CompletedProcess) -> str:
     """The run's own account: its summary line and why it stopped early, or its error."""
     lines = [ln.strip() for ln in res.stderr.splitlines() if ln.strip()]
     # Without the path and the seconds, so that the page changes only when the drawings do.
-    keep = [re.sub(r"; [\d.]+ s \(\d+ steps/s\)", "", re.sub(r"^\S+: ", "", ln)) for ln in lines
-            if "steps applied" in ln or "stopped early" in ln or "error" in ln]
+    keep = [re.sub(r"; [\d.]+ s \(\d+ steps/s\)", "", re.sub(r"^\S+\.(svg|png|gg): ", "", ln))
+            for ln in lines if "steps applied" in ln or "stopped early" in ln or "error" in ln]
     return " ".join(keep) or f"exit {res.returncode}"
 
 

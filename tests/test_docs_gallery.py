@@ -2,6 +2,7 @@
 
 import importlib.util
 import re
+import sys
 
 from conftest import ROOT
 
@@ -9,6 +10,7 @@ from conftest import ROOT
 def test_the_gallery_script_draws_every_scene(tmp_path):
     spec = importlib.util.spec_from_file_location("make_gallery", ROOT / "docs" / "make_gallery.py")
     gallery = importlib.util.module_from_spec(spec)
+    sys.modules["make_gallery"] = gallery       # its dataclasses look their module up
     spec.loader.exec_module(gallery)
     page = tmp_path / "gallery.md"
     assert gallery.main(["--quick", "--out", str(tmp_path / "img"), "--page", str(page)]) == 0
