@@ -18,9 +18,17 @@ from .occurrence import Host
 
 
 def side_graph(side: Side) -> Graph:
+    """The side as a `Graph` (vertices, edges, boundary gaps).
+
+    A `Graph` has no bare edges: its boundary holds vertex slots only. A side with wires (a
+    rule's simpler side, §4.3) has none to map them to, so it raises ValueError rather than
+    drop them; a wired right side enters matching as `wired_pairs` instead.
+    """
+    if side.wires:
+        raise ValueError(f"a side with {len(side.wires)} bare edge(s) (wires) has no Graph form;"
+                         " pass its wires as wired_pairs(side)")
     items = [it if isinstance(it, tuple) else (1 if it == bd.UP else -1) for it in side.boundary]
-    return Graph(tuple(side.vertices), tuple(sorted(side.edges)),
-                 items_to_gaps([it for it in items if not (isinstance(it, tuple) and it[0] < 0)]))
+    return Graph(tuple(side.vertices), tuple(sorted(side.edges)), items_to_gaps(items))
 
 
 def wired_pairs(rhs: Side) -> tuple[tuple[int, int], ...]:

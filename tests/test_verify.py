@@ -110,3 +110,23 @@ def test_the_size_prefilter_keeps_exactly_the_same_graphs(name, n):
         assert not stopped
         keys.append(sorted(canonical_key(g, [len(r) for r in rings]) for g in graphs))
     assert keys[0] == keys[1]
+
+
+def test_side_graph_keeps_every_slot_and_refuses_wires():
+    # A wired side has no Graph form: side_graph says so instead of dropping the wires.
+    from compiler.apply import side_graph
+    from grammar_lang import boundary as bd
+    res = compile_example(load_example(CORPUS / "diagonal-box.svg"))
+    rings = res.grammar.rings
+    wired = [s for r in res.grammar.rules for s in (r.lhs, r.rhs) if s.wires]
+    assert wired
+    for side in wired:
+        with pytest.raises(ValueError, match="wires"):
+            side_graph(side)
+    for r in res.grammar.rules:
+        for side in (r.lhs, r.rhs):
+            if side.wires:
+                continue
+            g = side_graph(side)
+            assert (g.verts, set(g.edges)) == (side.vertices, set(side.edges))
+            assert bd.canonical(g.side().tokens(rings)) == bd.canonical(side.tokens(rings))
