@@ -105,7 +105,9 @@ def load_grammar(path: str, compile_example: CompileExample | None = None) -> Gr
                 "give a grammar (.ggr) or an example (.gg, .svg)")
 
 
-def _parse_limits(items: list[str]) -> tuple[tuple[int, int], ...]:
+def parse_limits(items: list[str]) -> tuple[tuple[int, int], ...]:
+    """`--limit PRIORITY=N` items (ggrun and the REPL's set-up) as sorted (priority, N) pairs;
+    a malformed item is a user error with a hint."""
     out = {}
     for item in items:
         try:
@@ -240,7 +242,7 @@ def run_command(args: argparse.Namespace) -> int:
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)
     jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
-                _parse_limits(args.limit), both, path, Path(args.file).name, extent,
+                parse_limits(args.limit), both, path, Path(args.file).name, extent,
                 (args.width, args.scale))
             for k, path in enumerate(output_paths(out, args.count))]
     show = not args.quiet

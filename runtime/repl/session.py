@@ -28,7 +28,7 @@ from grammar_lang.rules import Grammar, Rule
 from ..engine.costs import parse_cost
 from ..engine.generate import Engine
 from ..engine.rewrite import DirectedRule
-from ..run_cmd import DEFAULT_STEPS, _parse_limits, load_grammar, write_drawing
+from ..run_cmd import DEFAULT_STEPS, parse_limits, load_grammar, write_drawing
 
 PROMPT = "gg> "
 
@@ -56,7 +56,7 @@ class Options:
     def from_args(args: argparse.Namespace) -> "Options":
         both = None if args.direction is None else args.direction == "both"
         return Options(args.seed, args.steps, args.cost, args.temperature,
-                       _parse_limits(args.limit), both)
+                       parse_limits(args.limit), both)
 
 
 class Output:
