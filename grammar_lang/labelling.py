@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -192,10 +193,42 @@ def _circ_dist(a: float, b: float, period: float) -> float:
     return min(d, period - d)
 
 
+class _Proto(NamedTuple):
+    """An edge label before it is named: its direction, faces, class, rigid length, the
+    example's edges it types, whether it is a rigid edge's own label, its typical length."""
+
+    angle: float
+    left: str
+    right: str
+    cls: str
+    length: float | None
+    edges: list[int]
+    rigid: bool
+    typical: float | None
+
+
 def _cluster(source, obs, edge_keys, faces, rigid, lengths):
     """Edge labels and, per edge, (label index, whether u→v walks along `a`)."""
-    opts = source.options
     rank = {f: i for i, f in enumerate(faces)}
+    groups, periods = _groups(edge_keys, rank, rigid)
+    raw, notes = _directions(groups, periods, source.options, edge_keys)
+    protos = [_proto(gk, ang, edges, period, rigid, lengths) for gk, ang, edges, period in raw]
+    # Readers expect labels in a stable, meaningful order: by class, faces, then direction.
+    protos.sort(key=lambda p: (p.cls, rank[p.left], rank[p.right], p.angle, p.edges[0]))
+    labels: list[EdgeLabel] = []
+    edge_label: dict[int, tuple[int, bool]] = {}
+    for idx, (p, name) in enumerate(zip(protos, _names(protos, rank))):
+        labels.append(EdgeLabel(name, p.left, p.right, p.angle, p.cls, p.length, p.typical))
+        for e in p.edges:
+            a, l, r = edge_keys[e][0], edge_keys[e][1], edge_keys[e][2]
+            # Whether u→v walks along `a`: told by the faces when they differ, else by direction.
+            forward = (l == p.left) if l != r else _circ_dist(a, p.angle, 360.0) < 90.0
+            edge_label[e] = (idx, forward)
+    return labels, edge_label, notes
+
+
+def _groups(edge_keys, rank, rigid):
+    """The example's edges grouped by class and faces, in drawing order, with their angles."""
     groups: dict[tuple, list[tuple[int, float]]] = defaultdict(list)
     periods: dict[tuple, float] = {}
     for i in sorted(range(len(edge_keys)), key=lambda i: _drawing_order(edge_keys[i][4], i)):
@@ -205,8 +238,13 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
         gk = (c, key) if c not in rigid else (c, key, "rigid", i)
         groups[gk].append((i, ang))
         periods[gk] = period
+    return groups, periods
 
-    raw: list[tuple[tuple, float, list[int], float]] = []   # (group key, angle, edges, period)
+
+def _directions(groups, periods, opts, edge_keys):
+    """Each group's edges clustered by direction: (group key, angle, edges, period) per label,
+    and a note for each label whose edges' directions were evened out."""
+    raw: list[tuple[tuple, float, list[int], float]] = []
     notes: list[Diagnostic] = []
     for gk in sorted(groups, key=str):
         members = groups[gk]
@@ -232,32 +270,19 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
                     f"{len(cl)} edge(s) with directions {lo:.1f}°..{hi:.1f}° "
                     f"({gk[1][0]}|{gk[1][1]}, class {gk[0]}) typed as one label at {ang:g}°",
                     edge_keys[edges[0]][4], severity="note"))
+    return raw, notes
 
-    labels: list[EdgeLabel] = []
-    edge_label: dict[int, tuple[int, bool]] = {}
-    protos = []
-    for gk, ang, edges, period in raw:
-        cls, (fl, fr) = gk[0], gk[1]
-        if period == 180.0 or ang < 180.0:
-            a_angle, left, right = ang % 180.0, fl, fr
-        else:
-            a_angle, left, right = ang - 180.0, fr, fl
-        a_angle = round(a_angle, 9) % 180.0
-        length = lengths[edges[0]] if (cls in rigid and lengths) else None
-        typical = _round_sig(float(np.median([lengths[e] for e in edges]))) if lengths else None
-        protos.append((a_angle, left, right, cls, length, edges, len(gk) > 2, typical))
-    # Readers expect labels in a stable, meaningful order: by class, faces, then direction.
-    protos.sort(key=lambda p: (p[3], rank[p[1]], rank[p[2]], p[0], p[5][0]))
-    names = _names(protos, rank)
-    for idx, ((a_angle, left, right, cls, length, edges, _, typ), name) in \
-            enumerate(zip(protos, names)):
-        labels.append(EdgeLabel(name, left, right, a_angle, cls, length, typ))
-        for e in edges:
-            a, l, r = edge_keys[e][0], edge_keys[e][1], edge_keys[e][2]
-            # Whether u→v walks along `a`: told by the faces when they differ, else by direction.
-            forward = (l == left) if l != r else _circ_dist(a, a_angle, 360.0) < 90.0
-            edge_label[e] = (idx, forward)
-    return labels, edge_label, notes
+
+def _proto(gk, ang, edges, period, rigid, lengths) -> _Proto:
+    cls, (fl, fr) = gk[0], gk[1]
+    if period == 180.0 or ang < 180.0:
+        a_angle, left, right = ang % 180.0, fl, fr
+    else:
+        a_angle, left, right = ang - 180.0, fr, fl
+    a_angle = round(a_angle, 9) % 180.0
+    length = lengths[edges[0]] if (cls in rigid and lengths) else None
+    typical = _round_sig(float(np.median([lengths[e] for e in edges]))) if lengths else None
+    return _Proto(a_angle, left, right, cls, length, edges, len(gk) > 2, typical)
 
 
 def _round_sig(x: float, digits: int = 6) -> float:
@@ -285,15 +310,15 @@ def _base_name(angle: float) -> str:
 
 def _names(protos, rank) -> list[str]:
     """Readable, unique label names: x, y, d45; with face indices x01 when an angle is shared."""
-    base = [_base_name(p[0]) for p in protos]
+    base = [_base_name(p.angle) for p in protos]
     count: dict[str, int] = defaultdict(int)
     for b in base:
         count[b] += 1
     names = []
-    for (angle, left, right, cls, length, _, is_rigid, _), b in zip(protos, base):
+    for p, b in zip(protos, base):
         name = b
         if count[b] > 1:
-            li, ri = rank[left], rank[right]
+            li, ri = rank[p.left], rank[p.right]
             name += f"{li}{ri}" if li < 10 and ri < 10 else f"_{li}_{ri}"
         names.append(name)
     # Still clashing (other classes, rigid edges): append the class, then a counter.
@@ -301,9 +326,9 @@ def _names(protos, rank) -> list[str]:
     for n in names:
         seen[n] += 1
     out, used = [], set()
-    for (_, _, _, cls, _, _, is_rigid, _), n in zip(protos, names):
+    for p, n in zip(protos, names):
         if seen[n] > 1:
-            n = f"{n}_c{cls}" if cls.isidentifier() or cls.isdigit() else f"{n}_c"
+            n = f"{n}_c{p.cls}" if p.cls.isidentifier() or p.cls.isdigit() else f"{n}_c"
         k, cand = 1, n
         while cand in used:
             k += 1
