@@ -11,7 +11,9 @@ the example's face labels. The exterior is left unpainted unless decorated. Deco
 (`decorate face|edge|vertex TARGET {...}`; a named target beats `*`, and among equals the
 later decoration wins)
 supply face fill/opacity/pattern, edge stroke/width/opacity/image, and vertex
-marker/size/fill/stroke/image. Bending (Appendix B) changes geometry and is not done here.
+marker/size/fill/stroke/image, and edge bend/bend-step: bending (Appendix B, see
+`bending`) changes the picture's geometry only, so a bent picture no longer reads back as the
+drawing, which keeps the unbent geometry.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ import numpy as np
 
 from grammar_lang.fileio import atomic_write
 
+from .bending import Bend, bend_picture
 from .drawing import Drawing
 from ..geometry.faces import UNBOUNDED, compute_faces, cycle_points
 
@@ -36,6 +39,7 @@ STROKE_PALETTE = ("#1a1a1a", "#1f78b4", "#e31a1c", "#33a02c", "#6a3d9a", "#ff7f0
 # Sizes relative to the example's unit length (its median edge), when not decorated.
 STROKE_WIDTH = 0.02
 MARGIN = 0.05           # of the drawing's larger side
+BEND_STEP = 0.25        # bend-step when not decorated, in units
 SCREEN = 800.0          # px along the larger side, for the width/height attributes
 
 
@@ -115,8 +119,10 @@ class _Canvas:
     base: str | Path | None
     exterior: str
     ids: list[int]
-    xy: np.ndarray
+    xy: np.ndarray                   # where vertices are drawn (bent, if edges bend)
     ends: np.ndarray
+    topology: np.ndarray             # the drawing's own positions, which faces are found from
+    paths: tuple | None              # per edge, the points a bent edge runs through
     unit: float
     vb: tuple[float, float, float, float]
     fmt: _Fmt
@@ -124,6 +130,19 @@ class _Canvas:
 
     def pt(self, p) -> str:
         return f"{self.fmt(p[0])},{self.fmt(-p[1])}"
+
+    def ring(self, cycle) -> np.ndarray:
+        """The points a cycle of half-edges runs through, bent edges' points included."""
+        if self.paths is None:
+            return cycle_points(self.xy, self.ends, cycle)
+        return np.concatenate([self.paths[h >> 1][:-1] if h % 2 == 0
+                               else self.paths[h >> 1][:0:-1] for h in cycle])
+
+    def line(self, e: int) -> str:
+        """An edge as path data."""
+        if self.paths is None:
+            return f"M {self.pt(self.xy[self.ends[e, 0]])} L {self.pt(self.xy[self.ends[e, 1]])}"
+        return "M " + " L ".join(self.pt(p) for p in self.paths[e])
 
     def href(self, path: str) -> str:
         if self.base is not None:
@@ -166,19 +185,49 @@ def _canvas(drawing: Drawing, ref, base) -> _Canvas:
     lengths = np.hypot(*(xy[ends[:, 1]] - xy[ends[:, 0]]).T) if len(ends) else np.zeros(0)
     unit = ref.unit if ref else (float(np.median(lengths[lengths > 0]))
                                  if np.any(lengths > 0) else 1.0)
-    lo = xy.min(axis=0) if len(xy) else np.zeros(2)
-    hi = xy.max(axis=0) if len(xy) else np.zeros(2)
-    size = float(max(hi - lo)) if len(xy) else 0.0
+    bent = _bend(drawing, ref, xy, ends, unit)
+    drawn = np.concatenate(bent.paths + (bent.xy,)) if bent else xy
+    lo = drawn.min(axis=0) if len(drawn) else np.zeros(2)
+    hi = drawn.max(axis=0) if len(drawn) else np.zeros(2)
+    size = float(max(hi - lo)) if len(drawn) else 0.0
     margin = MARGIN * size if size > 0 else unit
     vb = (lo[0] - margin, -hi[1] - margin, hi[0] - lo[0] + 2 * margin,
           hi[1] - lo[1] + 2 * margin)
-    return _Canvas(drawing, ref, base, ref.exterior if ref else "exterior", ids, xy, ends, unit,
+    return _Canvas(drawing, ref, base, ref.exterior if ref else "exterior", ids,
+                   bent.xy if bent else xy, ends, xy, bent.paths if bent else None, unit,
                    vb, _Fmt(size + 2 * margin))
+
+
+def _bend(drawing: Drawing, ref, xy, ends, unit):
+    """The bent picture, when an edge class is decorated with `bend`; else None. The frame
+    and its vertices (those on border edges) stay where they are. Seeded by the drawing's seed."""
+    edge_decos = decorations(ref, "edge")
+    if not any("bend" in props for _, props in edge_decos):
+        return None
+    border = {c.name for c in ref.classes if c.border}
+    per_class: dict[str, Bend | None] = {}
+    for e in drawing.edges:
+        if e.cls not in per_class and e.cls in border:
+            per_class[e.cls] = None           # the frame is the border: it never bends
+        elif e.cls not in per_class:
+            style = _style_for(edge_decos, e.cls)
+            angle = math.radians(float(style.get("bend", 0.0)))
+            step = float(style.get("bend-step", BEND_STEP * unit))
+            per_class[e.cls] = Bend(angle, step) if angle > 0 else None
+    if not any(per_class.values()):
+        return None
+    pinned = np.zeros(len(xy), dtype=bool)
+    for i, e in enumerate(drawing.edges):
+        if e.cls in border:
+            pinned[ends[i]] = True
+    seed = drawing.meta.get("seed", 0)
+    return bend_picture(xy, ends, [per_class[e.cls] for e in drawing.edges], pinned,
+                        seed if isinstance(seed, int) else 0)
 
 
 def _faces_group(cv: _Canvas) -> list[str]:
     """One filled path per painted face, its holes cut out."""
-    drawing, xy, ends, exterior, vb = cv.drawing, cv.xy, cv.ends, cv.exterior, cv.vb
+    drawing, ends, exterior, vb = cv.drawing, cv.ends, cv.exterior, cv.vb
     face_decos = decorations(cv.ref, "face")
     label_order = list(cv.ref.face_labels) if cv.ref else []
     for e in drawing.edges:
@@ -186,7 +235,7 @@ def _faces_group(cv: _Canvas) -> list[str]:
             if name not in label_order:
                 label_order.append(name)
     plain = [n for n in label_order if n != exterior and not _hex_colour(n)]
-    faces = compute_faces(xy, ends)
+    faces = compute_faces(cv.topology, ends)
     left = [drawing.edges[h >> 1].right if h & 1 else drawing.edges[h >> 1].left
             for h in range(2 * len(drawing.edges))]
     patterns: dict[tuple, str] = {}
@@ -194,15 +243,14 @@ def _faces_group(cv: _Canvas) -> list[str]:
     for f, face in enumerate(faces.faces):
         if f == UNBOUNDED:
             label = exterior
-            rings = [cycle_points(xy, ends, faces.cycles[c]) for c in face.holes]
+            rings = [cv.ring(faces.cycles[c]) for c in face.holes]
         else:
             cyc = faces.cycles[face.outer]
             counts: dict[str, int] = {}
             for h in cyc:
                 counts[left[h]] = counts.get(left[h], 0) + 1
             label = min(counts, key=lambda n: (-counts[n], n))
-            rings = [cycle_points(xy, ends, cyc)] + [cycle_points(xy, ends, faces.cycles[c])
-                                                     for c in face.holes]
+            rings = [cv.ring(cyc)] + [cv.ring(faces.cycles[c]) for c in face.holes]
         fill, style = face_paint(label, plain, exterior, face_decos)
         if fill is None and "pattern" not in style:
             continue
@@ -249,7 +297,7 @@ def _edges_group(cv: _Canvas) -> list[str]:
     for cls in sorted(by_class, key=class_order.index):
         style = edge_paint(cls, class_order, edge_decos)
         width = float(style.get("width", STROKE_WIDTH * cv.unit))
-        d = " ".join(f"M {cv.pt(xy[ends[i, 0]])} L {cv.pt(xy[ends[i, 1]])}" for i in by_class[cls])
+        d = " ".join(cv.line(i) for i in by_class[cls])
         opacity = fmt(style["opacity"]) if "opacity" in style else None
         if width > 0:
             out.append("    " + element("path", [("d", d), ("stroke", style["stroke"]),
