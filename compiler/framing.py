@@ -52,7 +52,8 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
     stretches of bare side (its two cut border half-edges carry a label that a corner carries,
     the side as it is with nothing on it) becomes a rule `structure ⇄ that one side edge`,
     a wired rule (§4.3): grown, it puts a copy of an example structure on the side, so the
-    drawing stays locally similar. Structures that meet the border elsewhere (a line across the
+    drawing stays locally similar. A structure that stands on several feet takes the bare
+    side between its feet with it. Structures that meet the border elsewhere (a line across the
     frame from side to side) are left to the inferred rules.
     """
     border = border_labels(example.labels, example.classes)
@@ -70,7 +71,10 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
     for comp in glued_components(range(len(prims)), keep):
         if prims[comp[0]] in corners:
             continue
-        side = _component_side(comp, keep, prims, prim_rings)
+        # A structure on several feet (a platform's legs) holds the side between them too.
+        members = set(comp)
+        inner = [e for e in slot_edges if e[0] in members and e[2] in members]
+        side = _component_side(comp, inner, prims, prim_rings)
         rule = None if side is None else _standing_rule(side, prim_rings, len(rules))
         if rule is not None:
             key = canonical_key(side_graph(rule.lhs), ring_len)    # one rule per shape

@@ -26,8 +26,9 @@ def load_source(path: str | Path) -> ExampleSource:
 
 
 def load_example(path: str | Path) -> Example:
+    from .grounding import close_ground
     from .labelling import label_example
     from .planar import build_planar_graph
-    source = load_source(path)
+    source = close_ground(load_source(path))
     graph = build_planar_graph(source) if source.paint else None
     return label_example(source, graph)

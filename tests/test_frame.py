@@ -43,9 +43,66 @@ def test_every_illustration_has_one_rectangular_frame(name):
 
 
 def test_examples_without_a_frame_keep_todays_behaviour():
-    for path in ("examples/castle.gg", "examples/house.gg", "examples/tree.gg"):
+    for path in ("examples/house.gg", "examples/tree.gg", "examples/square-filled.gg"):
         ex = load_example(Path(__file__).resolve().parent.parent / path)
         assert find_frame(ex) is None
+
+
+@pytest.mark.parametrize("path", ["examples/castle.gg", "examples/platform.gg"])
+def test_a_ground_without_a_frame_is_closed_into_one(path):
+    """A level ground line is the bottom side of a frame 4 grounds wide, on the side where
+    the example stands, and 2 of its tallest shapes high; the ground's ends run on to the
+    frame's sides, not vertices in the middle of a side."""
+    from grammar_lang.grounding import GROUND_HEIGHTS, GROUND_WIDTHS
+    from grammar_lang.loader import load_source
+    src = load_source(Path(__file__).resolve().parent.parent / path)
+    border = {n for n, c in src.classes.items() if c.border}
+    ground = [p for item in src.paint if getattr(item, "cls", None) in border for p in item.points]
+    drawn = [p for item in src.paint if getattr(item, "cls", None) not in border
+             for p in (item.points if hasattr(item, "points") else
+                       [q for ring in item.rings for q in ring])]
+    ex = load_example(Path(__file__).resolve().parent.parent / path)
+    frame = find_frame(ex)
+    assert frame is not None and len(frame.corners) == 4 and frame.axis_aligned
+    x0, y0, x1, y1 = frame.box
+    gx = [p[0] for p in ground]
+    assert x1 - x0 == pytest.approx(GROUND_WIDTHS * (max(gx) - min(gx)))
+    assert y0 == ground[0][1]
+    assert y1 - y0 == pytest.approx(GROUND_HEIGHTS * (max(p[1] for p in drawn) - y0))
+    vertices = set(ex.graph.vertices)
+    assert (min(gx), y0) not in vertices and (max(gx), y0) not in vertices
+
+
+@pytest.mark.parametrize("path", ["examples/castle.gg", "examples/platform.gg"])
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4])
+def test_grounded_examples_grow_standing_on_their_ground(path, seed):
+    """Every structure stands on the ground: one component holds the frame and all that
+    touches it, and anything else is what the example has free-standing (a window)."""
+    from collections import Counter
+    ex = load_example(Path(__file__).resolve().parent.parent / path)
+    g = compile_example(ex).grammar
+    free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
+    from runtime.engine.costs import default_cost
+    eng = Engine(g, seed=seed, cost=default_cost(g.header, 40))     # as ggrun runs it
+    eng.run(40)
+    host = eng.host
+    assert len(host) > 4 + 4          # something stands on the frame
+    comps = host.components()
+    framed = [c for c in comps if host.pinned & set(c)]
+    assert len(framed) == 1
+    for c in comps:
+        if c is not framed[0]:
+            assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
+    failures = check_drawing(ex, host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
+
+
+def test_a_ground_that_is_not_level_is_left_unframed(tmp_path):
+    gg = tmp_path / "steps.gg"
+    gg.write_text('example "steps"\nimport "ground"\n'
+                  "polyline (0, 0) (100, 0) (100, 20) (200, 20) class ground\n"
+                  "polyline (50, 0) (50, 40)\n")
+    assert find_frame(load_example(gg)) is None
 
 
 def test_a_border_that_ends_in_the_air_beside_a_frame_is_located(tmp_path):

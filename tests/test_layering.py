@@ -53,7 +53,7 @@ RUNTIME_LAYOUT = {
     "engine": {"host", "matching", "rewrite", "schedule", "costs", "rejections", "generate",
                "free_host", "free_match", "free_engine"},
     "geometry": {"solver", "spatial", "faces", "landing", "framing"},
-    "output": {"drawing", "svg_out", "graphml_out", "free_svg"},
+    "output": {"drawing", "svg_out", "bending", "graphml_out", "free_svg"},
     "repl": {"session", "commands", "complete"},
     "": {"cli", "run_cmd", "interrupt", "verifier"},
 }

@@ -1,0 +1,90 @@
+"""A ground line without a frame is closed into one (paper Appendix A).
+
+The paper models a line that does not end, such as the ground, as a line that meets the
+border of the space; the space needs a border for that. An example that draws a straight
+ground in a border class but no frame (`examples/castle.gg`, `platform.gg`) gets one here,
+before its drawing becomes a graph: a rectangle whose bottom side runs along the ground, on
+the side of the ground where the example's shapes stand. It is `GROUND_WIDTHS` times as wide as
+the drawn ground, centred on it (its bottom side replaces the ground line), and
+`GROUND_HEIGHTS` times as tall as the tallest shape, so
+generation has room for several structures side by side, and the ground's ends are no longer
+ends: they run on to the frame's sides. From then on the example is a framed scene like the
+paper's (see `frame`), so structures stand on the ground and nothing grows below it.
+
+A border that is not one straight line (steps in the ground, several grounds at different
+heights) cannot be a frame's side; it is left as drawn, and the example is unframed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .source import ExampleSource, ExplicitEdge, Region, Stroke
+
+GROUND_WIDTHS = 4.0      # the frame's width over the drawn ground's length
+GROUND_HEIGHTS = 2.0     # the frame's height over the tallest shape standing on the ground
+FLAT = 1e-9              # relative: how far from level a ground may be
+
+
+def close_ground(source: ExampleSource) -> ExampleSource:
+    """The source with a frame added around its ground line, or unchanged when it has a frame
+    already, no border at all, or a border that is not one level line."""
+    border = {name for name, c in source.classes.items() if c.border}
+    ground, rest = [], []
+    for item in source.paint:
+        cls = getattr(item, "cls", None)
+        if cls in border and not isinstance(item, Region):
+            if isinstance(item, Stroke) and item.closed:
+                return source                           # a frame is drawn already
+            ground.append(item)
+        else:
+            rest.append(item)
+    if not ground:
+        return source
+    pts = [p for item in ground for p in _points(item)]
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    length = max(xs) - min(xs)
+    if length <= 0 or max(ys) - min(ys) > FLAT * length:
+        return source
+    y = ys[0]
+    above, below = _heights(rest, y)
+    up = above >= below
+    height = GROUND_HEIGHTS * (above if up else below) or length / GROUND_WIDTHS
+    mid, half = (max(xs) + min(xs)) / 2, GROUND_WIDTHS * length / 2
+    top = y + height if up else y - height
+    first = ground[0]
+    frame = Stroke(((mid - half, y), (mid - half, top), (mid + half, top), (mid + half, y)),
+                   closed=True, cls=first.cls, span=first.span)
+    # The frame's bottom side is the ground: drawn once, so the ground's old ends do not stay
+    # behind as vertices in the middle of a side.
+    return replace(source, paint=rest + [frame],
+                   options=_keep_merge_distance(source, pts))
+
+
+def _points(item) -> list[tuple[float, float]]:
+    if isinstance(item, Stroke):
+        return list(item.points)
+    if isinstance(item, ExplicitEdge):
+        return [item.p, item.q]
+    return [p for ring in item.rings for p in ring]
+
+
+def _heights(rest, y: float) -> tuple[float, float]:
+    """How far the example's other shapes reach above and below the ground's level."""
+    above = below = 0.0
+    for item in rest:
+        for p in _points(item):
+            above, below = max(above, p[1] - y), max(below, y - p[1])
+    return above, below
+
+
+def _keep_merge_distance(source: ExampleSource, ground_points):
+    """The default merge distance is a fraction of the drawing's size, which the frame makes
+    several times larger: fix it at what the drawing as drawn gives, so points of a shape that
+    were apart stay apart."""
+    if source.options.merge_distance is not None:
+        return source.options
+    import numpy as np
+    from .planar import merge_distance
+    pts = [p for item in source.paint for p in _points(item)] or ground_points
+    return replace(source.options, merge_distance=merge_distance(source, np.asarray(pts)))
