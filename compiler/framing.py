@@ -16,7 +16,9 @@ from __future__ import annotations
 
 from grammar_lang import boundary as bd
 from grammar_lang.algorithms.components import glued_components
-from grammar_lang.frame import border_labels, border_primitives, corner_primitives
+from dataclasses import replace
+
+from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, corner_primitives
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Rule
 
@@ -42,6 +44,20 @@ def frame_rules(rules: tuple[Rule, ...], example, own: set) -> tuple[tuple[Rule,
             continue
         kept.append(r)
     return tuple(kept), len(rules) - len(kept)
+
+
+def frame_with_start(frame: Frame, example, slot_edges) -> Frame:
+    """The frame, with the example's frame component as its start when a side cannot be
+    drawn bare (lines meet it, so its border label changes along it)."""
+    if all(s is not None for s in bare_sides(frame, example.primitives, example.labels)):
+        return frame
+    corners = {c.prim for c in frame.corners}
+    prims = example.vertex_primitive
+    comp = next(c for c in glued_components(range(len(prims)), slot_edges)
+                if any(prims[v] in corners for v in c))
+    idx = {v: k for k, v in enumerate(comp)}
+    edges = tuple(sorted((idx[v], i, idx[w], j) for v, i, w, j in slot_edges if v in idx))
+    return replace(frame, start=Side(tuple(prims[v] for v in comp), edges, ()))
 
 
 def frame_starters(example, slot_edges) -> tuple[Rule, ...]:

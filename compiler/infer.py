@@ -33,7 +33,7 @@ from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
 from .canon import canonical_key, split
-from .framing import frame_rules, frame_starters
+from .framing import frame_rules, frame_starters, frame_with_start
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .boundary_match import Match, Matcher, Piece
@@ -501,6 +501,7 @@ class Inference:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
             rules, dropped = frame_rules(rules, self.ex, own)
             rules += frame_starters(self.ex, example_slots(self.ex))
+            self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(
             example=self.ex.name,
             primitives=len(self.rings),

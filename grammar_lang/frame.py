@@ -13,10 +13,12 @@ on it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from . import boundary as bd
 from .diagnostics import Span, error
+from .graph import Side
 
 
 @dataclass(frozen=True)
@@ -29,6 +31,7 @@ class Corner:
 @dataclass(frozen=True)
 class Frame:
     corners: tuple[Corner, ...]
+    start: Side | None = None     # what generation starts from when the sides cannot be bare
 
     @property
     def box(self) -> tuple[float, float, float, float]:
@@ -51,7 +54,8 @@ class Frame:
         x0, y0, _, _ = self.box
         w, h = self.size
         return Frame(tuple(Corner(c.prim, x0 + (c.x - x0) * width / w,
-                                  y0 + (c.y - y0) * height / h) for c in self.corners))
+                                  y0 + (c.y - y0) * height / h) for c in self.corners),
+                     self.start)
 
     def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
         """Inside the loop (even-odd rule), and at least `margin` inside its bounding box."""
@@ -65,6 +69,32 @@ class Frame:
                 if x < a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y):
                     inside = not inside
         return inside
+
+
+def bare_sides(frame: Frame, primitives, labels) -> list[tuple[int, int] | None]:
+    """Per side (corner k to corner k + 1), the slots of its two corners that point at each
+    other when they are one edge's two half-edges, else None: something meets that side, and
+    the border label changes along it."""
+    out = []
+    n = len(frame.corners)
+    for k in range(n):
+        a, b = frame.corners[k], frame.corners[(k + 1) % n]
+        i = _slot_towards(primitives[a.prim].ring, labels, b.x - a.x, b.y - a.y)
+        j = _slot_towards(primitives[b.prim].ring, labels, a.x - b.x, a.y - b.y)
+        ok = i is not None and j is not None and \
+            primitives[a.prim].ring[i] == bd.opposite(primitives[b.prim].ring[j])
+        out.append((i, j) if ok else None)
+    return out
+
+
+def _slot_towards(ring, labels, dx: float, dy: float) -> int | None:
+    """The slot of a ring whose half-edge points along (dx, dy), within a hair."""
+    angle = math.degrees(math.atan2(dy, dx))
+    for i, t in enumerate(ring):
+        d = labels[bd.label_of(t)].direction(bd.is_bar(t))
+        if abs((d - angle + 180.0) % 360.0 - 180.0) <= 1e-3:
+            return i
+    return None
 
 
 def border_labels(labels, classes) -> frozenset[int]:

@@ -39,6 +39,10 @@ def emit_ggr(grammar: Grammar) -> str:
     out.append(f"ggr {FORMAT_VERSION}")
     out.append("")
     out.extend(_header(h, names))
+    if h.frame is not None and h.frame.start is not None:
+        out.append("")
+        out.append("# What generation starts from: the frame's sides change label, so it cannot be bare.")
+        out.extend(line[2:] for line in _side("frame-start", h.frame.start, h, names))
     for rule in grammar.rules:
         out.append("")
         out.extend(_rule(rule, h, names))

@@ -138,6 +138,9 @@ class _Builder(HeaderReader, SideReader):
         except _Stop:       # recorded; later checks would only repeat it
             pass
         self._raise_errors()
+        if "frame_start" in singles:
+            header = self._guard(self._frame_start, singles["frame_start"], header) or header
+            self._raise_errors()
         rules = self._rules(lists["rule"], header)
         self._raise_errors()
         productions, start = self._productions(lists, singles, header, rules)
@@ -165,4 +168,4 @@ class _Builder(HeaderReader, SideReader):
 _KEYWORD = {"version": "ggr", "checksum": "checksum", "source": "source", "compiler": "compiler",
             "mode": "mode", "status": "status", "unit": "unit", "exterior": "exterior",
             "faces": "faces", "options": "options", "limits": "limits", "frame": "frame",
-            "vertex_labels": "vertices", "edge_labels": "edges", "start_graph": "start"}
+            "frame_start": "frame-start", "vertex_labels": "vertices", "edge_labels": "edges", "start_graph": "start"}

@@ -3,7 +3,7 @@ against its rotation system (`graph.face_walk`), and ∂L = ∂R for each rule."
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from lark import Tree
 
@@ -85,6 +85,39 @@ class SideReader(Reader):
                                     "'starter NAME { lhs { … } }'")
             self._check_interface(name, lhs, rhs, rhs_node, ctx)
         return Rule(name, lhs, rhs, s.get("priority", 0), s.get("weight", 1.0), span=where)
+
+    def _frame_start(self, node: Tree, header: Header) -> Header:
+        """`frame-start { … }`: the complete graph a frame whose sides change label starts
+        from. It holds each of the frame's corners once; generation solves the rest."""
+        kw = self._first_token(node)
+        if header.frame is None:
+            raise self.fail("'frame-start' without a 'frame' line", kw,
+                            "a start graph belongs to a frame: give its corners with "
+                            "'frame P x y …' first")
+        ctx = _Context(header, {p.name: i for i, p in enumerate(header.primitives)},
+                       {l.name: i for i, l in enumerate(header.labels)})
+        table, edges, boundary_nodes = self._declarations(
+            [c for c in node.children if isinstance(c, Tree)], ctx)
+        if boundary_nodes:
+            raise self.fail("a frame's start graph has no boundary", self._first_token(boundary_nodes[0]),
+                            "it is a complete graph: every half-edge is glued")
+        if table.wires:
+            raise self.fail("a frame's start graph has no wires", kw)
+        glued, out_edges = self._glue(table, edges)
+        side = Side(tuple(table.vertices), tuple(out_edges), ())
+        rings = ctx.rings
+        for v, p in enumerate(side.vertices):
+            for i in range(len(rings[p])):
+                if (v, i) not in glued:
+                    raise self.fail(f"the frame's start graph is not complete: {table.show(v, i)} "
+                                    "is not glued", kw, "glue every half-edge of every vertex")
+        for c in header.frame.corners:
+            if side.vertices.count(c.prim) != 1:
+                raise self.fail(f"the frame's start graph holds its corner "
+                                f"{header.primitives[c.prim].name} "
+                                f"{side.vertices.count(c.prim)} times, not once", kw,
+                                "the corners in the 'frame' line are vertices of the start graph")
+        return replace(header, frame=replace(header.frame, start=side))
 
     def _check_interface(self, name: str, lhs: Side, rhs: Side, rhs_node: Tree, ctx) -> None:
         left, right = lhs.tokens(ctx.rings), rhs.tokens(ctx.rings)

@@ -259,3 +259,68 @@ def test_the_default_scene_cost_keeps_every_part_in_proportion(seed):
     for ks, share in zip(cost.groups, cost.shares):
         got = sum(counts[k] for k in ks) / edges
         assert 0.75 * share <= got <= share / 0.75, (ks, share, got)     # size alone: 1.44×
+
+
+@pytest.fixture(scope="module")
+def village():
+    ex = load_example(ILLUSTRATIONS / "village.gg")
+    return ex, compile_example(ex)
+
+
+def test_a_frame_whose_sides_change_label_starts_from_its_frame_component(village):
+    """The village's strips run from the left side to the right: its frame cannot be drawn
+    bare, so it starts from the example's frame with everything touching it, which the .ggr
+    keeps through a round trip."""
+    from grammar_lang.frame import bare_sides
+    ex, res = village
+    frame = res.grammar.header.frame
+    assert None in bare_sides(frame, ex.primitives, ex.labels)
+    start = frame.start
+    assert start is not None and not start.boundary
+    assert sorted(c.prim for c in frame.corners) == sorted(
+        p for p in start.vertices if p in {c.prim for c in frame.corners})
+    again = parse_ggr(emit_ggr(res.grammar)).header.frame
+    assert again.start == start
+    castle = load_example(ILLUSTRATIONS / "castle.gg")
+    assert compile_example(castle).grammar.header.frame.start is None    # bare sides
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_frame_start_is_placed_and_grown_inside_its_frame(village, seed):
+    ex, res = village
+    from runtime.engine.costs import default_cost
+    g = res.grammar
+    eng = Engine(g, seed=seed, cost=default_cost(g.header, 30))
+    host = eng.host
+    assert len(host) == len(g.header.frame.start.vertices) and host.n_open == 0
+    eng.run(30)
+    x0, y0, x1, y1 = g.header.frame.box
+    for v in host.vertices():
+        x, y = host.pos[v]
+        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+    assert sorted(host.pos[v] for v in host.pinned) == sorted((c.x, c.y) for c in g.header.frame.corners)
+    failures = check_drawing(ex, host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: "\n".join(line for line in t.splitlines() if not line.startswith("frame ")),
+     "'frame-start' without a 'frame' line"),
+    (lambda t: t.replace("frame-start {\n  v0:", "frame-start {\n  extra: p0   v0:", 1),
+     "is not complete"),
+])
+def test_a_broken_frame_start_is_a_located_error(village, edit, message):
+    text = edit(emit_ggr(village[1].grammar))
+    with pytest.raises(UserError, match=message) as err:
+        parse_ggr(text, "v.ggr")
+    assert "v.ggr:" in err.value.render()
+
+
+def test_the_documented_frame_start_is_the_villages(village):
+    """docs/ggr-language.md quotes the village's start graph: its lines are the compiler's."""
+    import re
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "ggr-language.md").read_text()
+    block = re.search(r"```ggr fragment\n(frame-start.*?)```", doc, re.S).group(1)
+    written = emit_ggr(village[1].grammar).splitlines()
+    lines = [line for line in block.splitlines() if line.strip() != "…"]
+    assert len(lines) >= 4 and all(line in written for line in lines)

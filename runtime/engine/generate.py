@@ -99,7 +99,7 @@ class Engine:
         self.rng = np.random.default_rng(seed)
         self.host = Host(self.grammar.header, self.tables)
         if self.frame is not None:
-            place_frame(self.host, self.frame)
+            place_frame(self.host, self.frame, self.rng)
         self.history: list[StepRecord] = []
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}

@@ -2,46 +2,101 @@
 
 Its corners are pinned: the solver never frees them and no move may remove them, and every
 vertex a move places must lie inside the frame. Between two corners runs one border edge,
-the side as it is before anything stands on it; rules split it where structures stand.
+the side as it is before anything stands on it; rules split it where structures stand. A
+frame whose sides change label starts from its `start` graph instead, placed by the solver
+around the corners.
 """
 
 from __future__ import annotations
 
 from grammar_lang.diagnostics import error
-from grammar_lang.frame import Frame, border_labels, border_primitives
+from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives
 
 from ..engine.host import Host
 
+START_TRIES = 8       # solver rounds for a frame's start graph
 
-def place_frame(host: Host, frame: Frame) -> None:
-    t = host.t
+
+def place_frame(host: Host, frame: Frame, rng=None) -> None:
+    """The frame in the empty host: bare, one border edge per side, when it can be drawn so;
+    else its `start` (the example's frame component), the rest solved around its corners."""
+    h = host.header
+    sides = bare_sides(frame, h.primitives, h.labels)
+    if any(s is None for s in sides) and frame.start is None:
+        k = sides.index(None)
+        a, b = frame.corners[k], frame.corners[(k + 1) % len(frame.corners)]
+        raise error(f"the frame's side from ({a.x:g}, {a.y:g}) to ({b.x:g}, {b.y:g}) cannot "
+                    "be drawn as one edge: its two corners carry different border labels",
+                    None, "leave some room between the frame's corners and the shapes "
+                          "that stand on its sides, or compile the example again (a grammar "
+                          "compiled today starts such a frame from the example's own)")
     ids = []
     for c in frame.corners:
         v = host.new_id()
         host.add_vertex(v, c.prim, (c.x, c.y))
         ids.append(v)
-    n = len(ids)
-    for k in range(n):
-        a, b = frame.corners[k], frame.corners[(k + 1) % n]
-        i = _slot_towards(t, a.prim, b.x - a.x, b.y - a.y)
-        j = _slot_towards(t, b.prim, a.x - b.x, a.y - b.y)
-        if i is None or j is None or t.rings[a.prim][i] != t.rings[b.prim][j] ^ 1:
-            raise error(f"the frame's side from ({a.x:g}, {a.y:g}) to ({b.x:g}, {b.y:g}) cannot "
-                        "be drawn as one edge: its two corners carry different border labels",
-                        None, "leave some room between the frame's corners and the shapes "
-                              "that stand on its sides")
-        host.glue((ids[k], i), (ids[(k + 1) % n], j))
-        inside = t.left[a.prim][i] if _counter_clockwise(frame) else t.right[a.prim][i]
+    _mark(host, frame, ids)
+    if all(s is not None for s in sides):
+        n = len(ids)
+        for k, (i, j) in enumerate(sides):
+            host.glue((ids[k], i), (ids[(k + 1) % n], j))
+    else:
+        _place_start(host, frame, ids, rng)
+
+
+def _mark(host: Host, frame: Frame, ids: list[int]) -> None:
+    """What the host knows of its frame: pinned corners, the inside face, border labels."""
+    h = host.header
+    c0, c1 = frame.corners[0], frame.corners[1]
+    i = _slot_towards(host.t, c0.prim, c1.x - c0.x, c1.y - c0.y)
+    inside = host.t.left[c0.prim][i] if _counter_clockwise(frame) else host.t.right[c0.prim][i]
     host.pinned = frozenset(ids)
     host.frame = frame
     host.frame_face = inside
-    h = host.header
     host.border_labels = border_labels(h.labels, h.classes)
     # The frame's own sides (border edges with the inside face beside them) are as long as
     # the frame; other border edges are the feet of what stands on it.
     host.side_labels = frozenset(k for k in host.border_labels
                                  if inside in (h.labels[k].left, h.labels[k].right))
     host.on_border = border_primitives(h.primitives, host.border_labels)
+
+
+def _place_start(host: Host, frame: Frame, corner_ids: list[int], rng) -> None:
+    """The start graph's corners are the placed corners; every other vertex is new, and the
+    solver places them all in one move, as a rule's right side is placed."""
+    import numpy as np
+    from ..engine.rewrite import Change
+    from .solver import Solver
+    start = frame.start
+    by_prim = {c.prim: v for c, v in zip(frame.corners, corner_ids)}
+    ids, new = [], []
+    for p in start.vertices:
+        if p in by_prim:
+            ids.append(by_prim.pop(p))
+        else:
+            ids.append(host.new_id())
+            new.append((ids[-1], p))
+    glue = tuple(((ids[v], i), (ids[w], j)) for v, i, w, j in start.edges)
+    partner = {(ids[k], i): None for k, p in enumerate(start.vertices)
+               for i in range(len(host.t.rings[p]))}
+    for a, b in glue:
+        partner[a], partner[b] = b, a
+    change = Change(None, None, (), tuple(new), glue, (), partner)
+    x0, y0, x1, y1 = frame.box
+    rng = rng if rng is not None else np.random.default_rng(0)
+    for _ in range(START_TRIES):
+        solver = Solver(host, change, rng, lambda: ((x0 + x1) / 2, (y0 + y1) / 2))
+        pos = next((p.positions for p in solver.placements()), None)
+        if pos is not None:
+            break
+    else:
+        raise error("the frame's start (the example's frame with what touches it) could not be "
+                    f"placed in a {x1 - x0:g} × {y1 - y0:g} frame", None,
+                    "give an --extent closer to the example's own frame")
+    for v, p in new:
+        host.add_vertex(v, p, pos[v])
+    for a, b in glue:
+        host.glue(a, b)
 
 
 def _counter_clockwise(frame: Frame) -> bool:
