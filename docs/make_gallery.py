@@ -37,6 +37,12 @@ class Scene:
 SCENES = (
     Scene("castle-scene", ROOT / "examples" / "castle-scene.gg", 4000, 5,
           "this project's castle in a frame (`examples/castle-scene.gg`)"),
+    Scene("castle-grounded", ROOT / "examples" / "castle.gg", 2000, 5,
+          "this project's castle on a ground line with no frame (`examples/castle.gg`): the "
+          "ground is closed into a frame four grounds wide"),
+    Scene("flowers-scene", ROOT / "examples" / "flowers.gg", 2000, 3,
+          "this project's flowers in a frame (`examples/flowers.gg`), their stems bent "
+          "(Appendix B)"),
     Scene("castle", ILLUSTRATIONS / "castle.gg", 4000, 80, "the paper's Fig. 1 castle"),
     Scene("flowers", ILLUSTRATIONS / "flowers.gg", 2000, 42, "the paper's Fig. 9f flowers"),
     Scene("space-station", ILLUSTRATIONS / "space-station.gg", 3700, 22,
@@ -91,8 +97,8 @@ def main(argv=None) -> int:
         "Made by `python docs/make_gallery.py`, which writes this page. Each scene shows its",
         "example as `ggc draw` reads it and two drawings grown by `ggrun`, at a quarter of the",
         "paper's number of iterations N and at N (the paper's Table 1). Under each is what the",
-        "run reported, including runs that stopped early. See [scenes.md](scenes.md) for how",
-        "frames work and what is still open.", ""]
+        "run reported, including runs that stopped early (for this project's own examples N",
+        "is ours). See [scenes.md](scenes.md) for how frames work and what is still open.", ""]
     for s in SCENES:
         print(f"{s.name} …", flush=True)
         text += draw_scene(s, args.out.resolve(), args.quick, args.page.resolve().parent)

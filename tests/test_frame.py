@@ -1,5 +1,6 @@
 """Scenes in a frame (paper Appendix A): the frame is the border of the space."""
 
+import functools
 from pathlib import Path
 
 import pytest
@@ -73,14 +74,26 @@ def test_a_ground_without_a_frame_is_closed_into_one(path):
     assert (min(gx), y0) not in vertices and (max(gx), y0) not in vertices
 
 
-@pytest.mark.parametrize("path", ["examples/castle.gg", "examples/platform.gg"])
+FRAMED = sorted(p.name for p in EXAMPLES.glob("*.gg") if find_frame(load_example(p)) is not None)
+
+
+@functools.lru_cache(maxsize=None)
+def _framed(name):
+    ex = load_example(EXAMPLES / name)
+    return ex, compile_example(ex).grammar
+
+
+def test_the_framed_examples_are_the_scenes():
+    assert {"castle.gg", "castle-scene.gg", "flowers.gg", "platform.gg"} <= set(FRAMED)
+
+
+@pytest.mark.parametrize("name", FRAMED)
 @pytest.mark.parametrize("seed", [0, 1, 2, 3, 4])
-def test_grounded_examples_grow_standing_on_their_ground(path, seed):
+def test_framed_examples_grow_standing_on_their_ground(name, seed):
     """Every structure stands on the ground: one component holds the frame and all that
     touches it, and anything else is what the example has free-standing (a window)."""
     from collections import Counter
-    ex = load_example(Path(__file__).resolve().parent.parent / path)
-    g = compile_example(ex).grammar
+    ex, g = _framed(name)
     free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
     from runtime.engine.costs import default_cost
     eng = Engine(g, seed=seed, cost=default_cost(g.header, 40))     # as ggrun runs it
