@@ -12,13 +12,15 @@ ends: they run on to the frame's sides. From then on the example is a framed sce
 paper's (see `frame`), so structures stand on the ground and nothing grows below it.
 
 A border that is not one straight line (steps in the ground, several grounds at different
-heights) cannot be a frame's side; it is left as drawn, and the example is unframed.
+heights) cannot be a frame's side; it is left as drawn, the example is unframed, and
+`ground_note` says so.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
+from .diagnostics import Diagnostic
 from .source import ExampleSource, ExplicitEdge, Region, Stroke
 
 GROUND_WIDTHS = 4.0      # the frame's width over the drawn ground's length
@@ -29,23 +31,12 @@ FLAT = 1e-9              # relative: how far from level a ground may be
 def close_ground(source: ExampleSource) -> ExampleSource:
     """The source with a frame added around its ground line, or unchanged when it has a frame
     already, no border at all, or a border that is not one level line."""
-    border = {name for name, c in source.classes.items() if c.border}
-    ground, rest = [], []
-    for item in source.paint:
-        cls = getattr(item, "cls", None)
-        if cls in border and not isinstance(item, Region):
-            if isinstance(item, Stroke) and item.closed:
-                return source                           # a frame is drawn already
-            ground.append(item)
-        else:
-            rest.append(item)
-    if not ground:
+    ground, rest = _split(source)
+    if not _level(ground):
         return source
     pts = [p for item in ground for p in _points(item)]
     xs, ys = [p[0] for p in pts], [p[1] for p in pts]
     length = max(xs) - min(xs)
-    if length <= 0 or max(ys) - min(ys) > FLAT * length:
-        return source
     y = ys[0]
     above, below = _heights(rest, y)
     up = above >= below
@@ -59,6 +50,57 @@ def close_ground(source: ExampleSource) -> ExampleSource:
     # behind as vertices in the middle of a side.
     return replace(source, paint=rest + [frame],
                    options=_keep_merge_distance(source, pts))
+
+
+def ground_note(source: ExampleSource) -> Diagnostic | None:
+    """A note when the example's border lines end in the air and cannot be closed into a
+    frame (they are not one level line): generation then has no ground to stand things on."""
+    ground, _ = _split(source)
+    if not ground or _level(ground):
+        return None
+    return Diagnostic("this border line ends in the air and is not one level line, so it "
+                      "cannot be closed into a frame: the example is unframed",
+                      ground[0].span, "draw the frame around the example: "
+                      "`border rect (x0, y0) (x1, y1) class C`, or make the ground level",
+                      severity="note", source=source.text)
+
+
+def _split(source: ExampleSource):
+    """The open border lines (empty when a closed border, a frame, is drawn), and the rest."""
+    border = {name for name, c in source.classes.items() if c.border}
+    ground, rest = [], []
+    for item in source.paint:
+        if getattr(item, "cls", None) in border and not isinstance(item, Region):
+            if isinstance(item, Stroke) and item.closed:
+                return [], source.paint                 # a frame is drawn already
+            ground.append(item)
+        else:
+            rest.append(item)
+    if ground and not _open_ends(ground):
+        return [], source.paint                         # a frame drawn in pieces (SVG)
+    return ground, rest
+
+
+def _open_ends(ground) -> bool:
+    """Whether some end of the border's pieces is an end of no other piece (a piece drawn
+    from a side's middle, a T, counts as open too: the frame finder judges those)."""
+    ends: dict[tuple[float, float], int] = {}
+    for item in ground:
+        pts = _points(item)
+        for p in (pts[0], pts[-1]):
+            key = (round(p[0], 6), round(p[1], 6))
+            ends[key] = ends.get(key, 0) + 1
+    return any(n % 2 for n in ends.values())
+
+
+def _level(ground) -> bool:
+    """Whether the border lines lie on one horizontal line of some length."""
+    if not ground:
+        return False
+    pts = [p for item in ground for p in _points(item)]
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    length = max(xs) - min(xs)
+    return length > 0 and max(ys) - min(ys) <= FLAT * length
 
 
 def _points(item) -> list[tuple[float, float]]:

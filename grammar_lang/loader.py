@@ -26,9 +26,14 @@ def load_source(path: str | Path) -> ExampleSource:
 
 
 def load_example(path: str | Path) -> Example:
-    from .grounding import close_ground
+    from dataclasses import replace
+
+    from .grounding import close_ground, ground_note
     from .labelling import label_example
     from .planar import build_planar_graph
-    source = close_ground(load_source(path))
+    source = load_source(path)
+    note = ground_note(source)
+    source = close_ground(source)
     graph = build_planar_graph(source) if source.paint else None
-    return label_example(source, graph)
+    example = label_example(source, graph)
+    return replace(example, notes=example.notes + (note,)) if note else example

@@ -115,7 +115,13 @@ def test_a_ground_that_is_not_level_is_left_unframed(tmp_path):
     gg.write_text('example "steps"\nimport "ground"\n'
                   "polyline (0, 0) (100, 0) (100, 20) (200, 20) class ground\n"
                   "polyline (50, 0) (50, 40)\n")
-    assert find_frame(load_example(gg)) is None
+    ex = load_example(gg)
+    assert find_frame(ex) is None
+    note = next(n for n in ex.notes if "ends in the air" in n.message)
+    assert note.severity == "note" and "steps.gg:3:1" in note.render()
+    for name in NAMES:          # a frame drawn in pieces (the SVGs) is not an open ground
+        assert not any("ends in the air" in n.message
+                       for n in load_example(ILLUSTRATIONS / f"{name}.gg").notes)
 
 
 def test_a_border_that_ends_in_the_air_beside_a_frame_is_located(tmp_path):
