@@ -343,3 +343,30 @@ def test_the_documented_frame_start_is_the_villages(village):
     written = emit_ggr(village[1].grammar).splitlines()
     lines = [line for line in block.splitlines() if line.strip() != "…"]
     assert len(lines) >= 4 and all(line in written for line in lines)
+
+
+@functools.lru_cache(maxsize=None)
+def _illustration(name):
+    ex = load_example(ILLUSTRATIONS / f"{name}.gg")
+    return ex, compile_example(ex).grammar
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4])
+def test_every_illustration_grows_verified_inside_its_frame(name, seed):
+    """The paper's four illustrations, five seeds each, run as ggrun runs them (default
+    scene cost): the drawing passes the verifier, the corners stay where the frame puts
+    them, and every vertex stays inside it."""
+    from runtime.engine.costs import default_cost
+    ex, g = _illustration(name)
+    eng = Engine(g, seed=seed, cost=default_cost(g.header, 12))
+    eng.run(12)
+    host = eng.host
+    frame = g.header.frame
+    assert sorted(host.pos[v] for v in host.pinned) == sorted((c.x, c.y) for c in frame.corners)
+    x0, y0, x1, y1 = frame.box
+    assert all(x0 - 1e-6 <= host.pos[v][0] <= x1 + 1e-6 and y0 - 1e-6 <= host.pos[v][1] <= y1 + 1e-6
+               for v in host.vertices())
+    failures = check_drawing(ex, host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
+    assert host.check_consistency() == []
