@@ -446,11 +446,8 @@ def _open_boundaries(h, comp: list[int]) -> list[bd.Tokens]:
                 continue
             walk = face_walk(side, (local[v], i), rings)
             seen.update(slot for slot, _ in walk)
-            tokens: list[int] = []
-            for (lv, li), turns in walk:
-                tokens.append(rings[side.vertices[lv]][li])
-                tokens.extend(bd.turns(turns))
-            out.append(bd.canonical(tokens))
+            out.append(bd.canonical(bd.from_gaps((side.slot_token(slot, rings), turns)
+                                                 for slot, turns in walk)))
     return out
 
 
