@@ -18,7 +18,7 @@ from grammar_lang.graph import Side, face_walk
 
 from ..output.drawing import load_drawing
 from ..engine.matching import find_match
-from ..engine.rejections import Rejection
+from ..geometry.rejections import Rejection
 from .session import Quit, Session
 from ..verifier import check_drawing
 
