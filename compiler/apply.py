@@ -13,7 +13,7 @@ from grammar_lang import boundary as bd
 from grammar_lang.algorithms.dpo import join_interface
 from grammar_lang.graph import Side
 
-from .gluing import Graph, items_to_gaps
+from .gluing import Graph
 from .occurrence import Host
 
 
@@ -27,8 +27,7 @@ def side_graph(side: Side) -> Graph:
     if side.wires:
         raise ValueError(f"a side with {len(side.wires)} bare edge(s) (wires) has no Graph form;"
                          " pass its wires as wired_pairs(side)")
-    items = [it if isinstance(it, tuple) else (1 if it == bd.UP else -1) for it in side.boundary]
-    return Graph(tuple(side.vertices), tuple(sorted(side.edges)), items_to_gaps(items))
+    return Graph(tuple(side.vertices), tuple(sorted(side.edges)), bd.gaps(side.boundary))
 
 
 def wired_pairs(rhs: Side) -> tuple[tuple[int, int], ...]:

@@ -1,6 +1,7 @@
 """Algorithm 2: find simpler graphs whose boundaries, spliced together, equal a given boundary.
 
-Boundaries are token gaps: (half-edge token, net turns after it). A piece R matches part of a
+Boundaries are in the gap form of grammar_lang.boundary, over tokens: (half-edge token, net
+turns after it). A piece R matches part of a
 target T when its half-edges map in cyclic order onto some of T's half-edges with equal tokens,
 and the net turns of T between two consecutive matched half-edges equal R's gap there. Each
 run of unmatched half-edges between them is a closed substring of its own, found recursively:
@@ -17,7 +18,7 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass, field
 
-Toks = tuple[tuple[int, int], ...]
+from grammar_lang import boundary as bd
 
 
 @dataclass(frozen=True)
@@ -26,18 +27,12 @@ class Piece:
     (`node` = -1 - label). `rank` orders by complexity: (half-edges, insertion order)."""
 
     node: int
-    toks: Toks
+    gaps: bd.Gaps
     rank: tuple[int, int]
     counts: tuple[tuple[int, int], ...] = field(compare=False, default=())
 
 
 Match = tuple[tuple[Piece, tuple[int, ...]], ...]   # piece, target index of each of its half-edges
-
-
-def cyclic_canon(toks: Toks) -> Toks:
-    if not toks:
-        return toks
-    return min(toks[i:] + toks[:i] for i in range(len(toks)))
 
 
 class Matcher:
@@ -47,7 +42,7 @@ class Matcher:
         self.splice = splice          # False: no rule may splice several graphs (Appendix A)
         self.budget = budget
         self.pieces: dict[int, Piece] = {}
-        self.by_string: dict[Toks, list[int]] = {}
+        self.by_string: dict[bd.Gaps, list[int]] = {}
         # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
         # group fits a target or not as a whole.
         self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
@@ -56,14 +51,14 @@ class Matcher:
         self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int]]] = {}
         self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
-        self._memo: dict[Toks, tuple[int, Match | None]] = {}
+        self._memo: dict[bd.Gaps, tuple[int, Match | None]] = {}
         self._steps = 0
 
     def add(self, piece: Piece) -> None:
-        c = Counter(t for t, _ in piece.toks)
-        piece = Piece(piece.node, piece.toks, piece.rank, tuple(sorted(c.items())))
+        c = Counter(t for t, _ in piece.gaps)
+        piece = Piece(piece.node, piece.gaps, piece.rank, tuple(sorted(c.items())))
         self.pieces[piece.node] = piece
-        self.by_string.setdefault(cyclic_canon(piece.toks), []).append(piece.node)
+        self.by_string.setdefault(bd.least_rotation(piece.gaps), []).append(piece.node)
         if piece.counts not in self.by_counts:
             least = piece.counts[0][0] if piece.counts else None
             self.by_least.setdefault(least, []).append(
@@ -77,12 +72,12 @@ class Matcher:
 
     # --- the search ----------------------------------------------------------------------
 
-    def find(self, target: Toks, rank: tuple[int, int]) -> Match | None:
+    def find(self, target: bd.Gaps, rank: tuple[int, int]) -> Match | None:
         """A way to build `target` from pieces simpler than `rank`, or None."""
-        for node in self.by_string.get(cyclic_canon(target), ()):
+        for node in self.by_string.get(bd.least_rotation(target), ()):
             p = self.pieces.get(node)
             if p is not None and p.rank < rank:
-                pos = _align_whole(p.toks, target)
+                pos = _align_whole(p.gaps, target)
                 if pos is not None:
                     return ((p, pos),)
         if not self.splice or len(target) < 2:
@@ -93,7 +88,7 @@ class Matcher:
         except _OutOfBudget:
             return None
 
-    def _solve(self, target: Toks, max_half: int) -> Match | None:
+    def _solve(self, target: bd.Gaps, max_half: int) -> Match | None:
         hit = self._memo.get((target, max_half))
         if hit is not None and (hit[1] is not None or hit[0] == self.version):
             return hit[1]
@@ -104,7 +99,7 @@ class Matcher:
         self._memo[(target, max_half)] = (self.version, res)
         return res
 
-    def _candidates(self, target: Toks, max_half: int) -> list[Piece]:
+    def _candidates(self, target: bd.Gaps, max_half: int) -> list[Piece]:
         have = Counter(t for t, _ in target)
         key = (tuple(sorted(have.items())), max_half)
         hit = self._cands.get(key)
@@ -116,11 +111,11 @@ class Matcher:
                 if size <= max_half and all(have.get(t, 0) >= n for t, n in counts):
                     out.extend(self.pieces[i] for i in self.by_counts[counts]
                                if i in self.pieces)
-        out.sort(key=lambda p: (-len(p.toks), p.rank))    # a total order: ranks are unique
+        out.sort(key=lambda p: (-len(p.gaps), p.rank))    # a total order: ranks are unique
         self._cands[key] = (self.version, out)
         return out
 
-    def _search(self, target: Toks, max_half: int) -> Match | None:
+    def _search(self, target: bd.Gaps, max_half: int) -> Match | None:
         m = len(target)
         prefix = [0]
         for _, n in target:
@@ -138,11 +133,11 @@ class Matcher:
         # so only placements covering position 0 need trying.
         first = target[0][0]
         for piece in self._candidates(target, min(max_half, m)):
-            p = len(piece.toks)
+            p = len(piece.gaps)
             for j0 in range(p):
-                if piece.toks[j0][0] != first:
+                if piece.gaps[j0][0] != first:
                     continue
-                r = piece.toks[j0:] + piece.toks[:j0]
+                r = piece.gaps[j0:] + piece.gaps[:j0]
                 for pos in _placements(r, target, 0, turns):
                     self._steps += 1
                     if self._steps > self.budget:
@@ -153,7 +148,7 @@ class Matcher:
                         return ((piece, own),) + rest
         return None
 
-    def _fill(self, target: Toks, pos: tuple[int, ...], p: int) -> Match | None:
+    def _fill(self, target: bd.Gaps, pos: tuple[int, ...], p: int) -> Match | None:
         m = len(target)
         out: Match = ()
         for j in range(p):
@@ -175,7 +170,7 @@ class _OutOfBudget(Exception):
     pass
 
 
-def _placements(r: Toks, target: Toks, k0: int, turns):
+def _placements(r: bd.Gaps, target: bd.Gaps, k0: int, turns):
     """Cyclically increasing placements of r's half-edges in target, r[0] at k0."""
     m, p = len(target), len(r)
     pos = [k0]
@@ -200,7 +195,7 @@ def _placements(r: Toks, target: Toks, k0: int, turns):
     yield from rec(1)
 
 
-def _align_whole(r: Toks, target: Toks) -> tuple[int, ...] | None:
+def _align_whole(r: bd.Gaps, target: bd.Gaps) -> tuple[int, ...] | None:
     m = len(target)
     for k in range(m):
         if all(target[(k + j) % m] == r[j] for j in range(m)):

@@ -114,7 +114,7 @@ def _component_side(comp, edges, prims, prim_rings) -> Side | None:
     walk = face_walk(Side(verts, es, ()), opened[0], prim_rings)
     if len(walk) != len(opened):
         return None
-    return Side(verts, es, tuple(it for slot, n in walk for it in (slot, *bd.turns(n))))
+    return Side(verts, es, bd.from_gaps(walk))
 
 
 def _standing_rule(side: Side, rings, k: int) -> Rule | None:

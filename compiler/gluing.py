@@ -1,9 +1,9 @@
 """Graphs of primitive instances with boundary strings, and the two gluing operations (§4.2).
 
-A `Graph` is connected while it lives in the hierarchy. Its boundary is kept as gaps: the open
-slots in counter-clockwise order, each with the net number of turns (∧ minus ∨) that follow it
-before the next open slot. Gaps are the reduced form of a boundary string, so the string rewrite
-rules of §4.2 become small arithmetic on them:
+A `Graph` is connected while it lives in the hierarchy. Its boundary is kept in the gap form of
+grammar_lang.boundary, over slots: the open slots in counter-clockwise order, each with the net
+number of turns (∧ minus ∨) that follow it before the next open slot. Gaps are the reduced form
+of a boundary string, so the string rewrite rules of §4.2 become small arithmetic on them:
 
 - loop gluing of consecutive `a ā` (no turn between) or `ā ∨ a` (one ∨ between) removes both
   slots and adds their turns to the gap before them (companion §3.1: only consecutive slots);
@@ -21,14 +21,13 @@ from grammar_lang.graph import Side
 
 Slot = tuple[int, int]
 Edge = tuple[int, int, int, int]
-Gaps = tuple[tuple[Slot, int], ...]
 
 
 @dataclass(frozen=True)
 class Graph:
     verts: tuple[int, ...]        # primitive index of each vertex
     edges: tuple[Edge, ...]       # glued slot pairs (v, i, w, j), (v, i) < (w, j), sorted
-    gaps: Gaps                    # cyclic boundary: (open slot, turns after it)
+    gaps: bd.Gaps                 # cyclic boundary: (open slot, turns after it)
     # The blocks glued, in order: each instance takes the next len(block.verts) vertices. Any
     # one way of building the graph will do, so this is not part of its identity.
     units: tuple[int, ...] = field(default=(), compare=False)
@@ -41,56 +40,20 @@ class Graph:
     def is_complete(self) -> bool:
         return not self.gaps and bool(self.verts)
 
-    def tokens(self, rings: Sequence[Sequence[int]]) -> tuple[tuple[int, int], ...]:
-        """The boundary as (half-edge token, turns after it) pairs."""
+    def tokens(self, rings: Sequence[Sequence[int]]) -> bd.Gaps:
+        """The boundary in gap form over tokens: (half-edge token, turns after it) pairs."""
         return tuple((rings[self.verts[v]][i], n) for (v, i), n in self.gaps)
 
     def string(self, rings: Sequence[Sequence[int]]) -> bd.Tokens:
-        if not self.gaps:
-            return (bd.UP,) if self.verts else ()
-        return bd.from_gaps(self.tokens(rings))
+        return bd.from_gaps(self.tokens(rings), complete=bool(self.verts))
 
     def side(self) -> Side:
-        return Side(self.verts, self.edges, gaps_to_items(self.gaps, bool(self.verts)))
-
-
-def gaps_to_items(gaps: Gaps, nonempty: bool = True) -> tuple:
-    if not gaps:
-        return (bd.UP,) if nonempty else ()
-    out: list = []
-    for slot, n in gaps:
-        out.append(slot)
-        out.extend(bd.turns(n))
-    return tuple(out)
-
-
-def items_to_gaps(items: Sequence) -> Gaps:
-    """Cyclic items (slots, and signed turn counts) to gaps starting at the first slot."""
-    first = next((k for k, it in enumerate(items) if isinstance(it, tuple)), None)
-    if first is None:
-        return ()
-    rot = list(items[first:]) + list(items[:first])
-    out: list[list] = []
-    for it in rot:
-        if isinstance(it, tuple):
-            out.append([it, 0])
-        else:
-            out[-1][1] += it
-    return tuple((s, n) for s, n in out)
+        return Side(self.verts, self.edges, bd.from_gaps(self.gaps, complete=bool(self.verts)))
 
 
 def primitive_graph(prim: int, ring_len: int) -> Graph:
     gaps = tuple(((0, i), 1 if i == ring_len - 1 else 0) for i in range(ring_len))
     return Graph((prim,), (), gaps, (prim,))
-
-
-def _items(g: Graph) -> list:
-    out: list = []
-    for s, n in g.gaps:
-        out.append(s)
-        if n:
-            out.append(n)
-    return out
 
 
 def _rotate_to(items: list, slot: Slot) -> list:
@@ -103,17 +66,18 @@ def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings, unit: int | None = 
     `unit` names h when it is a block glued whole."""
     off = len(g.verts)
     ht = (t[0] + off, t[1])
-    h_items = [(it[0] + off, it[1]) if isinstance(it, tuple) else it for it in _items(h)]
+    h_items = [(it[0] + off, it[1]) if isinstance(it, tuple) else it
+               for it in bd.from_gaps(h.gaps)]
     after = _rotate_to(h_items, ht)[1:]
-    g_items = _rotate_to(_items(g), s)
+    g_items = _rotate_to(list(bd.from_gaps(g.gaps)), s)
     barred = bd.is_bar(rings[g.verts[s[0]]][s[1]])
-    repl = [-1] + after if barred else after + [-1]
+    repl = [bd.DOWN] + after if barred else after + [bd.DOWN]
     items = repl + g_items[1:]
     edges = g.edges + tuple((v + off, i, w + off, j) for v, i, w, j in h.edges)
     a, b = sorted((s, ht))
     edges = tuple(sorted(edges + ((a[0], a[1], b[0], b[1]),)))
     units = g.units + ((unit,) if unit is not None else h.units)
-    return Graph(g.verts + h.verts, edges, items_to_gaps(items), units)
+    return Graph(g.verts + h.verts, edges, bd.gaps(items), units)
 
 
 def loop_gluable(g: Graph, k: int, rings) -> bool:

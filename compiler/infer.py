@@ -430,11 +430,8 @@ class Inference:
             edges.extend((v + off, i, w + off, j) for v, i, w, j in h.edges)
             for (slot, _), k in zip(h.gaps, pos):
                 items[k] = (slot[0] + off, slot[1])
-        boundary: list = []
-        for k, (_, n) in enumerate(lhs.gaps):
-            boundary.append(items[k])
-            boundary.extend(bd.turns(n))
-        return Side(tuple(verts), tuple(sorted(edges)), tuple(boundary),
+        boundary = bd.from_gaps((items[k], n) for k, (_, n) in enumerate(lhs.gaps))
+        return Side(tuple(verts), tuple(sorted(edges)), boundary,
                     wires=tuple(wires)), graphs
 
     # --- result -----------------------------------------------------------------------------

@@ -1,19 +1,35 @@
-"""Boundary strings (paper §3.3) as tuples of small integers.
+"""Boundary strings (paper §3.3), in the two forms the project writes them in.
 
 A token `t >= 0` is a half-edge: label `t >> 1`, barred (`ā`, pointing in [-180°, 0°)) when
 `t & 1`. `UP` is a positive turn ∧ and `DOWN` a negative turn ∨. A boundary string is cyclic:
 rotations are equal, and adjacent ∧∨ cancel, also across the wrap-around. `canonical` gives one
 representative per class, so it can be hashed. Every closed boundary has P − N = 1.
+
+The half-edges of a boundary are named by token where only their labels matter (a primitive, a
+class of graphs, what a `.ggr` file says), and by slot `(vertex, ring index)` where they belong
+to one graph (`graph.Side.boundary`, a compiler hierarchy graph); a slot stands where a token
+would. Either way a boundary takes one of two forms, and each has its job:
+
+- **string form** (`Tokens` for tokens): half-edges and `UP`/`DOWN` marks in walking order, the
+  paper's notation. It is what a `.ggr` file writes and a person reads; it is the only form
+  that tells the complete graph (∧) from the empty one (); `canonical` hashes it.
+- **gap form** (`Gaps`): one (half-edge, net turns ∧ minus ∨ after it) pair per half-edge, from
+  a half-edge on. It is the reduced string, with the turns between two half-edges as one count,
+  so splicing and gluing (§4.2) and Algorithm 2's turn totals are small arithmetic on it.
+
+`gaps` and `from_gaps` convert between them, for tokens and slots alike.
 """
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from typing import Hashable, Iterable, Sequence, TypeVar
 
 UP = -1     # ∧
 DOWN = -2   # ∨
 
+H = TypeVar("H", bound=Hashable)      # a half-edge: a token (int >= 0) or a slot (vertex, index)
 Tokens = tuple[int, ...]
+Gaps = tuple[tuple[H, int], ...]
 
 
 def half(label: int, bar: bool) -> int:
@@ -77,35 +93,44 @@ def rotations(tokens: Sequence[int]) -> Iterable[Tokens]:
 
 def canonical(tokens: Iterable[int]) -> Tokens:
     """The least rotation of the reduced string: equal for equal cyclic boundary strings."""
-    r = reduce(tokens)
-    if not r:
-        return r
-    return min(rotations(r))
+    return least_rotation(reduce(tokens))
 
 
-def gaps(tokens: Sequence[int]) -> list[tuple[int, int]]:
-    """The string as (half-edge, net turns after it) pairs, starting at the first half-edge.
+def least_rotation(seq: Sequence) -> tuple:
+    """The least of the rotations of `seq`; () for an empty one."""
+    return min(rotations(seq)) if seq else ()
 
-    Turns before the first half-edge wrap around to the last pair. A string with no half-edges
-    gives [].
+
+def gaps(string: Iterable) -> Gaps:
+    """The gap form of a string (of tokens or of slots): (half-edge, net turns after it) pairs,
+    starting at the first half-edge. Turns before the first half-edge wrap around to the last
+    pair; turns need not be reduced. A string with no half-edges gives ().
     """
-    hs = [i for i, t in enumerate(tokens) if t >= 0]
-    if not hs:
-        return []
-    n = len(tokens)
-    out = []
-    for k, i in enumerate(hs):
-        j = hs[(k + 1) % len(hs)] if k + 1 < len(hs) else hs[0] + n
-        out.append((tokens[i], winding(tokens[(i + 1 + m) % n] for m in range(j - i - 1))))
-    return out
+    items = list(string)
+    for first, t in enumerate(items):
+        if t != UP and t != DOWN:
+            break
+    else:
+        return ()
+    out: list[list] = []
+    for t in items[first:] + items[:first]:
+        if t == UP:
+            out[-1][1] += 1
+        elif t == DOWN:
+            out[-1][1] -= 1
+        else:
+            out.append([t, 0])
+    return tuple((h, n) for h, n in out)
 
 
-def from_gaps(pairs: Iterable[tuple[int, int]]) -> Tokens:
-    out: list[int] = []
+def from_gaps(pairs: Iterable[tuple[H, int]], complete: bool = False) -> tuple:
+    """The string form of a gap form. With no pairs, a `complete` graph's string is ∧ and any
+    other's (the empty graph's) is ()."""
+    out: list = []
     for h, n in pairs:
         out.append(h)
         out.extend(turns(n))
-    return tuple(out)
+    return tuple(out) if out or not complete else (UP,)
 
 
 def primitive_boundary(angled_halves: Iterable[tuple[float, int]]) -> Tokens:

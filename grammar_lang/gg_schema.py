@@ -149,13 +149,7 @@ def check_value(prop: A.Prop, field: Field, palette: dict[str, str], base: Path,
     v = prop.value
     where = v.span if v is not None else prop.span
     if field.kind == "bool":
-        if v is None:
-            return True
-        if isinstance(v, A.Word) and v.kind == "name" and v.text.lower() in _BOOLS:
-            return _BOOLS[v.text.lower()]
-        raise error(f"'{prop.key}' is a yes/no setting", where,
-                    f"write just '{prop.key}', or '{prop.key}: yes' / '{prop.key}: no'",
-                    source=source)
+        return _bool_value(prop, v, where, source)
     if v is None:
         raise error(f"'{prop.key}' needs a value", prop.span,
                     f"write '{prop.key}: …' ({field.doc})" if field.doc else None, source=source)
@@ -165,24 +159,43 @@ def check_value(prop: A.Prop, field: Field, palette: dict[str, str], base: Path,
                         "write a colour like #c0f0ff or a name like steelblue", source=source)
         return colour(v, palette, source)
     if field.kind == "file":
-        if not (isinstance(v, A.Word) and v.kind == "string"):
-            raise error(f"'{prop.key}' needs a file name in quotes", where,
-                        f'write {prop.key}: "picture.svg"', source=source)
-        p = (base / v.text)
-        if p.suffix.lower() not in IMAGE_SUFFIXES:
-            raise error(f"'{v.text}' is not an image", where,
-                        "use an " + ", ".join(IMAGE_SUFFIXES) + " file", source=source)
-        if not p.is_file():
-            raise error(f"image file not found: {v.text}", where,
-                        f"paths are relative to the .gg file's folder ({base})", source=source)
-        return str(p.resolve())
+        return _file_value(prop, v, where, base, source)
     if field.kind == "enum":
         if isinstance(v, A.Word) and v.kind in ("name", "string") and v.text in field.choices:
             return v.text
         raise error(f"'{getattr(v, 'text', v)}' is not a {prop.key}", where,
                     did_you_mean(str(getattr(v, "text", "")), field.choices)
                     or "choose one of " + ", ".join(field.choices), source=source)
-    # numeric kinds
+    return _number_value(prop, field, v, where, source)
+
+
+def _bool_value(prop: A.Prop, v, where, source: str | None) -> bool:
+    if v is None:
+        return True
+    if isinstance(v, A.Word) and v.kind == "name" and v.text.lower() in _BOOLS:
+        return _BOOLS[v.text.lower()]
+    raise error(f"'{prop.key}' is a yes/no setting", where,
+                f"write just '{prop.key}', or '{prop.key}: yes' / '{prop.key}: no'",
+                source=source)
+
+
+def _file_value(prop: A.Prop, v, where, base: Path, source: str | None) -> str:
+    """An image file's resolved path, relative to the .gg file's folder."""
+    if not (isinstance(v, A.Word) and v.kind == "string"):
+        raise error(f"'{prop.key}' needs a file name in quotes", where,
+                    f'write {prop.key}: "picture.svg"', source=source)
+    p = (base / v.text)
+    if p.suffix.lower() not in IMAGE_SUFFIXES:
+        raise error(f"'{v.text}' is not an image", where,
+                    "use an " + ", ".join(IMAGE_SUFFIXES) + " file", source=source)
+    if not p.is_file():
+        raise error(f"image file not found: {v.text}", where,
+                    f"paths are relative to the .gg file's folder ({base})", source=source)
+    return str(p.resolve())
+
+
+def _number_value(prop: A.Prop, field: Field, v, where, source: str | None):
+    """A number of one of the numeric kinds, in its base unit, within the field's range."""
     if not isinstance(v, A.Num):
         raise error(f"'{prop.key}' needs a number, got {v.text}", where,
                     f"{prop.key} is the {field.doc}", source=source)

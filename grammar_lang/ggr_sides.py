@@ -300,7 +300,7 @@ class SideReader(Reader):
             done.add(c)
             written = _written_walk(items, where[first], c, component)
             walk = face_walk(side, first, ctx.rings)
-            if [tuple(w) for w in written] == walk:
+            if list(written) == walk:
                 continue
             message, bad = _walk_error(written, walk, first, show)
             expect = " ".join(show(*slot) + (" " + _turn_text(n) if n else "") for slot, n in walk)
@@ -309,20 +309,14 @@ class SideReader(Reader):
                             f"its open half-edges are: {expect}")
 
 
-def _written_walk(items, k0: int, c: int, component) -> list[list]:
-    """The written walk of component c from item k0: its slots with all turns between them."""
-    written: list[list] = []
-    for m in range(len(items)):
-        it = items[(k0 + m) % len(items)]
-        if isinstance(it, tuple):
-            if component(it) == c:
-                written.append([it, 0])
-        else:
-            written[-1][1] += 1 if it == bd.UP else -1
-    return written
+def _written_walk(items, k0: int, c: int, component) -> bd.Gaps:
+    """The written walk of component c from item k0, in gap form: its slots with all turns
+    between them (other components' slots dropped)."""
+    rotated = items[k0:] + items[:k0]
+    return bd.gaps(it for it in rotated if not isinstance(it, tuple) or component(it) == c)
 
 
-def _walk_error(written: list[list], walk, first, show) -> tuple[str, tuple]:
+def _walk_error(written: bd.Gaps, walk, first, show) -> tuple[str, tuple]:
     """What is wrong with a written walk that differs from the graph's, and where."""
     on_face = {slot for slot, _ in walk}
     stray = [w[0] for w in written if w[0] not in on_face]

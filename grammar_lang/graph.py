@@ -16,7 +16,8 @@ from . import boundary as bd
 from .algorithms.components import glued_components
 
 Slot = tuple[int, int]
-# A boundary item is an open slot, or a turn (bd.UP / bd.DOWN).
+# A boundary item is an open slot, or a turn (bd.UP / bd.DOWN): the string form of
+# grammar_lang.boundary, over slots.
 Item = Slot | int
 
 
@@ -25,7 +26,7 @@ class Side:
     """One side of a rule, or any graph of primitive instances with its boundary.
 
     `edges` holds each glued pair once as (v, i, w, j) with (v, i) < (w, j). `boundary` is the
-    cyclic boundary walk; several components spliced together (paper §4.2, §5.3) are one walk
+    cyclic boundary walk in string form (`tokens` reads it through the rings); several components spliced together (paper §4.2, §5.3) are one walk
     whose turns say how they are spliced. The empty graph has boundary () and a complete graph
     (∧) has boundary (bd.UP,).
 
@@ -82,10 +83,11 @@ EMPTY = Side((), (), ())
 def face_walk(side: Side, start: Slot, rings: Sequence[Sequence[int]]) -> list[tuple[Slot, int]]:
     """The open slots met walking around the face that leaves through open slot `start`.
 
-    Returns (open slot, net turns after it) pairs from `start` on, following the rotation
-    system: at a vertex the walk goes counter-clockwise to the next slot of the ring (a ∧ when it
-    wraps past the last); crossing an edge from a barred half-edge is a ∨. A wire (bare edge) is
-    walked as its generation-0 string ā a ∧. Raises ValueError if `start` is not open.
+    Returns the walk in gap form, (open slot, net turns after it) pairs from `start` on,
+    following the rotation system: at a vertex the walk goes counter-clockwise to the next slot
+    of the ring (a ∧ when it wraps past the last); crossing an edge from a barred half-edge is a
+    ∨. A wire (bare edge) is walked as its generation-0 string ā a ∧. Raises ValueError if
+    `start` is not open.
     """
     if start[0] < 0:
         bar, a = (start[0], 1), (start[0], 0)

@@ -88,10 +88,8 @@ def parse_path(text: str, limit=None) -> list[Subpath]:
     Curves are refused, with the offset of the first curve command, because guessing a
     flattening tolerance would silently invent vertices the user never drew.
     """
-    subpaths: list[Subpath] = []
-    current: Subpath | None = None
-    x = y = 0.0
-    most, count = (limit.value() if limit is not None else None), 0
+    pen = _Pen()
+    most = limit.value() if limit is not None else None
     i = _skip(text, 0)
     command = None
     while i < len(text):
@@ -99,58 +97,88 @@ def parse_path(text: str, limit=None) -> list[Subpath]:
         if ch in _COMMANDS:
             command, command_at = ch, i
             i = _skip(text, i + 1)
-            if not subpaths and command not in "Mm":
-                raise SvgValueError("path data must start with 'M'", command_at)
-            if command in _CURVES:
-                kind = "arc" if command in "Aa" else "curve"
-                raise SvgValueError(f"path has a {kind} ('{command}'); only straight segments "
-                                    "(M, L, H, V, Z) are supported", command_at, FLATTEN_HINT)
+            _check_command(command, command_at, pen.subpaths)
             if command in "Zz":
-                if current is None:
-                    raise SvgValueError("'Z' before any 'M'", command_at)
-                current.closed = True
-                x, y = current.points[0]
-                current = None
+                pen.close(command_at)
                 command = None
                 continue
         elif command is None:
-            if not subpaths and current is None:
+            if not pen.subpaths and pen.current is None:
                 raise SvgValueError("path data must start with 'M'", i)
             raise SvgValueError(f"expected a path command, found {ch!r}", i)
-        arity = 1 if command in "HhVv" else 2
-        args = []
-        for _ in range(arity):
-            match = _NUMBER.match(text, i)
-            if not match:
-                found = repr(text[i]) if i < len(text) else "the end"
-                raise SvgValueError(f"'{command}' needs {arity} number(s), found {found}", i)
-            args.append(_finite(float(match.group()), i))
-            i = _skip(text, match.end())
+        args, i = _path_numbers(text, i, command)
+        moved = command in "Mm"
+        command = pen.draw(command, args)
+        if not moved and most is not None and pen.count > most:
+            raise _over(limit, pen.count, i)
+    return pen.subpaths
+
+
+def _check_command(command: str, at: int, subpaths: list[Subpath]) -> None:
+    if not subpaths and command not in "Mm":
+        raise SvgValueError("path data must start with 'M'", at)
+    if command in _CURVES:
+        kind = "arc" if command in "Aa" else "curve"
+        raise SvgValueError(f"path has a {kind} ('{command}'); only straight segments "
+                            "(M, L, H, V, Z) are supported", at, FLATTEN_HINT)
+
+
+def _path_numbers(text: str, i: int, command: str) -> tuple[list[float], int]:
+    """The numbers one use of `command` takes, from offset i; and the offset after them."""
+    arity = 1 if command in "HhVv" else 2
+    args = []
+    for _ in range(arity):
+        match = _NUMBER.match(text, i)
+        if not match:
+            found = repr(text[i]) if i < len(text) else "the end"
+            raise SvgValueError(f"'{command}' needs {arity} number(s), found {found}", i)
+        args.append(_finite(float(match.group()), i))
+        i = _skip(text, match.end())
+    return args, i
+
+
+class _Pen:
+    """The subpaths drawn so far, the open one, the pen's position, and the points drawn."""
+
+    def __init__(self):
+        self.subpaths: list[Subpath] = []
+        self.current: Subpath | None = None
+        self.x = self.y = 0.0
+        self.count = 0
+
+    def close(self, at: int) -> None:
+        if self.current is None:
+            raise SvgValueError("'Z' before any 'M'", at)
+        self.current.closed = True
+        self.x, self.y = self.current.points[0]
+        self.current = None
+
+    def draw(self, command: str, args: list[float]) -> str:
+        """Apply one M, L, H or V with its numbers; the command that further numbers repeat."""
         relative = command.islower()
         upper = command.upper()
+        x, y = self.x, self.y
         if upper == "M":
-            x, y = (x + args[0], y + args[1]) if relative else (args[0], args[1])
-            current = Subpath((x, y))
-            subpaths.append(current)
-            count += 1
+            self.x, self.y = (x + args[0], y + args[1]) if relative else (args[0], args[1])
+            self.current = Subpath((self.x, self.y))
+            self.subpaths.append(self.current)
+            self.count += 1
             # Further pairs after a moveto are implicit linetos (SVG 1.1 §8.3.2).
-            command = "l" if relative else "L"
-            continue
+            return "l" if relative else "L"
         if upper == "L":
             x, y = (x + args[0], y + args[1]) if relative else (args[0], args[1])
         elif upper == "H":
             x = x + args[0] if relative else args[0]
         else:  # V
             y = y + args[0] if relative else args[0]
-        if current is None:
+        self.x, self.y = x, y
+        if self.current is None:
             # Drawing after Z continues from the closed subpath's start (SVG 1.1 §8.3.3).
-            current = Subpath((x, y) if not subpaths else subpaths[-1].points[0])
-            subpaths.append(current)
-        current.points.append((x, y))
-        count += 1
-        if most is not None and count > most:
-            raise _over(limit, count, i)
-    return subpaths
+            self.current = Subpath((x, y) if not self.subpaths else self.subpaths[-1].points[0])
+            self.subpaths.append(self.current)
+        self.current.points.append((x, y))
+        self.count += 1
+        return command
 
 
 # --- transforms -------------------------------------------------------------------------------

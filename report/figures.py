@@ -21,8 +21,9 @@ import numpy as np
 from grammar_lang import boundary as bd
 from grammar_lang.graph import Side
 from grammar_lang.rules import Header
+from runtime.engine.host import Host
 from runtime.geometry.solver import place_side
-from runtime.engine.host import Host, unit_vector
+from runtime.geometry.tables import unit_vector
 from runtime.output.svg_out import FILL_PALETTE, STROKE_PALETTE, decorations, edge_paint, face_paint
 
 from .markup import esc, num

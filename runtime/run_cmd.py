@@ -216,6 +216,30 @@ def write_drawing(drawing, grammar: Grammar, path: str,
 
 
 def run_command(args: argparse.Namespace) -> int:
+    out = _output_path(args)
+    grammar = load_grammar(args.file, getattr(args, "compile_example", None))
+    _check_run_options(args, grammar)
+    both = None if args.direction is None else args.direction == "both"
+    extent = parse_extent(args.extent, grammar)
+    jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
+                parse_limits(args.limit), both, path, Path(args.file).name, extent,
+                (args.width, args.scale))
+            for k, path in enumerate(output_paths(out, args.count))]
+    parallel = args.jobs > 1 and len(jobs) > 1
+    stop = multiprocessing.Event() if parallel else threading.Event()
+    with interrupt.catching(stop):
+        done = _run_jobs(jobs, args.jobs if parallel else 1, stop, show=not args.quiet)
+    if stop.is_set():
+        sys.stderr.write(f"interrupted: wrote the last valid drawing of {len(done)} of "
+                         f"{len(jobs)} runs" + (f" ({', '.join(j.out for j, _ in done)})"
+                                                if done else "") + "\n")
+        return EXIT_INTERRUPTED
+    return _report_empty(args, done)
+
+
+def _output_path(args: argparse.Namespace) -> str:
+    """The output path (or the first of --count's), after checking the arguments that need no
+    grammar: a file is given, the counts are in range, the format and PNG size are known."""
     if args.file is None:
         raise error("no grammar given", None, "run 'ggrun FILE.ggr', or 'ggrun --help'")
     for flag in ("steps", "count", "jobs"):
@@ -228,9 +252,12 @@ def run_command(args: argparse.Namespace) -> int:
                     "end the name with .svg, .png, .json or .graphml")
     from grammar_lang.png import check_size
     check_size(args.width, args.scale)
-    grammar = load_grammar(args.file, getattr(args, "compile_example", None))
+    return out
+
+
+def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
+    """The options that depend on the grammar, checked once, before any work."""
     from .engine.costs import parse_cost
-    # Validate the cost spec once, before any work.
     if grammar.is_free and (args.cost or args.direction or args.extent):
         raise error("--cost, --direction and --extent apply to angle-graph rules, not to "
                     "productions",
@@ -239,38 +266,33 @@ def run_command(args: argparse.Namespace) -> int:
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")
-    both = None if args.direction is None else args.direction == "both"
-    extent = parse_extent(args.extent, grammar)
-    jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
-                parse_limits(args.limit), both, path, Path(args.file).name, extent,
-                (args.width, args.scale))
-            for k, path in enumerate(output_paths(out, args.count))]
-    show = not args.quiet
-    parallel = args.jobs > 1 and len(jobs) > 1
-    stop = multiprocessing.Event() if parallel else threading.Event()
+
+
+def _run_jobs(jobs: list[Job], workers: int, stop, show: bool) -> list[tuple[Job, Summary]]:
+    """Run the jobs, in `workers` processes when more than one, and report each as it ends;
+    the finished ones. After Ctrl-C (`stop`) no new job starts."""
     done: list[tuple[Job, Summary]] = []
-    with interrupt.catching(stop):
-        if parallel:
-            with ProcessPoolExecutor(max_workers=args.jobs, initializer=_init_worker,
-                                     initargs=(stop,)) as pool:
-                for job, s in zip(jobs, pool.map(run_job, jobs)):
-                    if s is not None:
-                        done.append((job, s))
-                        if show:
-                            _report(job, s)
-        else:
-            for job in jobs:
-                s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
-                if s is None:
-                    break
-                done.append((job, s))
-                if show:
-                    _report(job, s)
-    if stop.is_set():
-        sys.stderr.write(f"interrupted: wrote the last valid drawing of {len(done)} of "
-                         f"{len(jobs)} runs" + (f" ({', '.join(j.out for j, _ in done)})"
-                                                if done else "") + "\n")
-        return EXIT_INTERRUPTED
+    if workers > 1:
+        with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker,
+                                 initargs=(stop,)) as pool:
+            for job, s in zip(jobs, pool.map(run_job, jobs)):
+                if s is not None:
+                    done.append((job, s))
+                    if show:
+                        _report(job, s)
+        return done
+    for job in jobs:
+        s = _run_with_progress(job) if show and sys.stderr.isatty() else run_job(job)
+        if s is None:
+            break
+        done.append((job, s))
+        if show:
+            _report(job, s)
+    return done
+
+
+def _report_empty(args: argparse.Namespace, done: list[tuple[Job, Summary]]) -> int:
+    """Say which drawings came out empty, with a hint why: the exit status."""
     empty = [(j, s) for j, s in done if s.vertices == 0 and args.steps > 0]
     hint = ("check --cost and --limit: a size:0 cost or a --limit of 0 steps keeps the "
             "drawing empty" if args.cost or args.limit else

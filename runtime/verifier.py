@@ -571,73 +571,93 @@ class _Context:
 
     # --- faces ------------------------------------------------------------------------------
     def face_labels(self) -> None:
-        g, edges = self.g, self.d.edges
-        faces = compute_faces(g.xy, g.ends)
-        left = [edges[h >> 1].right if h & 1 else edges[h >> 1].left for h in range(2 * len(edges))]
-
-        def uniform(cycle) -> str | None:
-            first = left[cycle[0]]
-            return first if all(left[h] == first for h in cycle) else None
-
-        def labels_on(cycle) -> dict[str, list[int]]:
-            out: dict[str, set[int]] = defaultdict(set)
-            for h in cycle:
-                out[left[h]].add(h >> 1)
-            return {k: sorted(v) for k, v in sorted(out.items())}
-
-        def listing(groups) -> str:
-            return "; ".join(f"{k} on {_edges(es)}" for k, es in groups.items())
-
-        def where(f: int) -> str:
-            if f == UNBOUNDED:
-                return "the unbounded face (outside everything)"
-            return f"the face bounded by {_edges(sorted({h >> 1 for h in faces.cycles[faces.faces[f].outer]}))}"
-
-        def members(root: int) -> list[int]:
-            return [g.ids[v] for v in np.flatnonzero(faces.component == faces.component[root])]
-
-        for f, face in enumerate(faces.faces):
-            if f == UNBOUNDED:
-                label = self.ref.exterior
-            else:
-                cyc = faces.cycles[face.outer]
-                label = uniform(cyc)
-                if label is None:
-                    groups = labels_on(cyc)
-                    # Which side is wrong cannot be told from the face alone: name them all.
-                    label = max(groups, key=lambda k: (len(groups[k]), k == self.ref.exterior))
-                    involved = tuple(sorted({h >> 1 for h in cyc}))
-                    self.fail("face", f"{where(f)} has different labels on its sides",
-                              edges=involved, at=self.mid(involved[0]),
-                              expected="one label on every side facing the face",
-                              found=listing(groups))
+        sides = _FaceSides(self.g, self.d.edges)
+        for f, face in enumerate(sides.faces.faces):
+            label = self.ref.exterior if f == UNBOUNDED else self._outer_label(sides, f, face.outer)
             for hole in face.holes:
-                cyc = faces.cycles[hole]
-                outside = uniform(cyc)
-                if outside == label:
-                    continue
-                root = int(g.ends[cyc[0] >> 1, 0])
-                vs = members(root)
-                involved = tuple(sorted({h >> 1 for h in cyc}))
-                if outside is not None:
-                    self.fail("nesting", f"the component of vertices {_some(vs)} is drawn "
-                              f"inside {where(f)}, which is labelled '{label}', but its outside "
-                              f"is labelled '{outside}'", tuple(vs), involved,
-                              self.vertex_at(root), expected=f"'{label}' around it",
-                              found=f"'{outside}'")
-                    continue
-                groups = labels_on(cyc)
-                if f == UNBOUNDED:
-                    wrong = tuple(e for k, es in groups.items() if k != label for e in es)
-                    self.fail("face", f"the outside of the component of vertices {_some(vs)} "
-                              f"is {where(f)}, but some edges give it another label", tuple(vs),
-                              wrong, self.mid(wrong[0]), expected=f"'{label}' all around",
-                              found=listing(groups))
-                else:
-                    self.fail("face", f"the outside of the component of vertices {_some(vs)} "
-                              f"has different labels, inside {where(f)} labelled '{label}'",
-                              tuple(vs), involved, self.mid(involved[0]),
-                              expected=f"'{label}' all around", found=listing(groups))
+                self._hole_label(sides, f, label, hole)
+
+    def _outer_label(self, sides: _FaceSides, f: int, outer: int) -> str:
+        """The label of bounded face f, from its outer cycle; a failure when that cycle's sides
+        disagree (then the label most of them give)."""
+        cyc = sides.faces.cycles[outer]
+        label = sides.uniform(cyc)
+        if label is not None:
+            return label
+        groups = sides.labels_on(cyc)
+        # Which side is wrong cannot be told from the face alone: name them all.
+        label = max(groups, key=lambda k: (len(groups[k]), k == self.ref.exterior))
+        involved = tuple(sorted({h >> 1 for h in cyc}))
+        self.fail("face", f"{sides.where(f)} has different labels on its sides",
+                  edges=involved, at=self.mid(involved[0]),
+                  expected="one label on every side facing the face", found=_listing(groups))
+        return label
+
+    def _hole_label(self, sides: _FaceSides, f: int, label: str, hole: int) -> None:
+        """A component drawn inside face f (labelled `label`) must give its outside that label."""
+        cyc = sides.faces.cycles[hole]
+        outside = sides.uniform(cyc)
+        if outside == label:
+            return
+        root = int(self.g.ends[cyc[0] >> 1, 0])
+        vs = sides.members(root)
+        involved = tuple(sorted({h >> 1 for h in cyc}))
+        if outside is not None:
+            self.fail("nesting", f"the component of vertices {_some(vs)} is drawn "
+                      f"inside {sides.where(f)}, which is labelled '{label}', but its outside "
+                      f"is labelled '{outside}'", tuple(vs), involved,
+                      self.vertex_at(root), expected=f"'{label}' around it",
+                      found=f"'{outside}'")
+            return
+        groups = sides.labels_on(cyc)
+        if f == UNBOUNDED:
+            wrong = tuple(e for k, es in groups.items() if k != label for e in es)
+            self.fail("face", f"the outside of the component of vertices {_some(vs)} "
+                      f"is {sides.where(f)}, but some edges give it another label", tuple(vs),
+                      wrong, self.mid(wrong[0]), expected=f"'{label}' all around",
+                      found=_listing(groups))
+        else:
+            self.fail("face", f"the outside of the component of vertices {_some(vs)} "
+                      f"has different labels, inside {sides.where(f)} labelled '{label}'",
+                      tuple(vs), involved, self.mid(involved[0]),
+                      expected=f"'{label}' all around", found=_listing(groups))
+
+
+class _FaceSides:
+    """The faces of a drawing, with the label each half-edge gives the face on its left."""
+
+    def __init__(self, g, edges):
+        self.g = g
+        self.faces = compute_faces(g.xy, g.ends)
+        self.left = [edges[h >> 1].right if h & 1 else edges[h >> 1].left
+                     for h in range(2 * len(edges))]
+
+    def uniform(self, cycle) -> str | None:
+        """The one label that every half-edge of the cycle gives, or None."""
+        first = self.left[cycle[0]]
+        return first if all(self.left[h] == first for h in cycle) else None
+
+    def labels_on(self, cycle) -> dict[str, list[int]]:
+        """Label → the edges of the cycle that give it."""
+        out: dict[str, set[int]] = defaultdict(set)
+        for h in cycle:
+            out[self.left[h]].add(h >> 1)
+        return {k: sorted(v) for k, v in sorted(out.items())}
+
+    def where(self, f: int) -> str:
+        if f == UNBOUNDED:
+            return "the unbounded face (outside everything)"
+        outer = self.faces.cycles[self.faces.faces[f].outer]
+        return f"the face bounded by {_edges(sorted({h >> 1 for h in outer}))}"
+
+    def members(self, root: int) -> list[int]:
+        """The drawing's ids of the vertices in root's connected component."""
+        comp = self.faces.component
+        return [self.g.ids[v] for v in np.flatnonzero(comp == comp[root])]
+
+
+def _listing(groups) -> str:
+    return "; ".join(f"{k} on {_edges(es)}" for k, es in groups.items())
 
 
 def _edges(es) -> str:

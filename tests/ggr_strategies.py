@@ -180,11 +180,7 @@ def _component(draw, rings, labels, vertices: list[int], edges: list) -> list[tu
 
 
 def _as_items(walk, start: int) -> list:
-    out: list = []
-    for slot, n in walk[start:] + walk[:start]:
-        out.append(slot)
-        out.extend(bd.turns(n))
-    return out
+    return list(bd.from_gaps(walk[start:] + walk[:start]))
 
 
 @st.composite

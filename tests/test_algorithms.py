@@ -2,11 +2,12 @@
 
 import networkx as nx
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from grammar_lang.algorithms.canon import canonical_key
 from grammar_lang.algorithms.components import (DisjointSet, component_labels, components,
-                                                glued_components)
+                                                glued_components, glued_parts)
 
 graphs = st.integers(0, 12).flatmap(lambda n: st.tuples(
     st.just(n), st.lists(st.tuples(st.integers(0, max(n - 1, 0)), st.integers(0, max(n - 1, 0))),
@@ -108,3 +109,62 @@ def test_anchored_matches_walk_from_each_root_and_ask_the_hook():
     assert found == [[0, 1], [1, 2]]
     assert list(anchored_matches(link, prim, [7, 7], plans, [(0, 0), (0, 1)],
                                  lambda img: img[0] != 0)) == [[1, 2]]
+
+
+RING_LEN = (3, 2)       # two primitives: one with three slots, one with two
+
+
+@st.composite
+def glued_graphs(draw):
+    """A connected graph of primitive instances: labels, and glued slot pairs (v, i, w, j)."""
+    labels = draw(st.lists(st.integers(0, len(RING_LEN) - 1), min_size=1, max_size=6))
+    slots = [(v, i) for v, p in enumerate(labels) for i in range(RING_LEN[p])]
+    order = draw(st.permutations(slots))
+    pairs = draw(st.integers(0, len(order) // 2))
+    edges = tuple(sorted(tuple(min(a, b)) + tuple(max(a, b))
+                         for a, b in zip(order[0:2 * pairs:2], order[1:2 * pairs:2])))
+    assume(len(glued_components(range(len(labels)), edges)) == 1)
+    return tuple(labels), edges
+
+
+def nx_glued(labels, edges):
+    g = nx.MultiDiGraph()
+    g.add_nodes_from((v, {"p": p}) for v, p in enumerate(labels))
+    for v, i, w, j in edges:                 # both ways, so a slot pair reads from either end
+        g.add_edge(v, w, slots=(i, j))
+        g.add_edge(w, v, slots=(j, i))
+    return g
+
+
+@given(glued_graphs(), glued_graphs(), st.randoms(use_true_random=False))
+@settings(max_examples=300, deadline=None)
+def test_canonical_keys_are_equal_exactly_for_isomorphic_graphs(a, b, rnd):
+    from networkx.algorithms.isomorphism import categorical_multiedge_match
+    perm = list(range(len(a[0])))
+    rnd.shuffle(perm)
+    moved = [0] * len(perm)
+    for old, new in enumerate(perm):
+        moved[new] = a[0][old]
+    renumbered = tuple(sorted(tuple(min(s, t)) + tuple(max(s, t)) for s, t in
+                              (((perm[v], i), (perm[w], j)) for v, i, w, j in a[1])))
+    assert canonical_key(*a, RING_LEN) == canonical_key(tuple(moved), renumbered, RING_LEN)
+    same = nx.is_isomorphic(nx_glued(*a), nx_glued(*b), node_match=lambda x, y: x["p"] == y["p"],
+                            edge_match=categorical_multiedge_match("slots", None))
+    assert (canonical_key(*a, RING_LEN) == canonical_key(*b, RING_LEN)) == same
+
+
+def test_canonical_key_tells_boundaries_apart_and_ignores_their_starting_slot():
+    labels, edges = (0, 0), ((0, 0, 1, 0),)
+    open_slots = [(0, 1), (0, 2), (1, 1), (1, 2)]
+    ring = tuple((s, 0) for s in open_slots[:-1]) + ((open_slots[-1], 1),)
+    key = canonical_key(labels, edges, RING_LEN, ring)
+    assert canonical_key(labels, edges, RING_LEN, ring[2:] + ring[:2]) == key
+    other = tuple((s, 1 if k == 0 else 0) for k, (s, _) in enumerate(ring))
+    assert canonical_key(labels, edges, RING_LEN, other) != key
+
+
+def test_glued_parts_renumber_each_component_from_zero():
+    labels = (1, 0, 1, 0)
+    edges = [(0, 0, 2, 1), (1, 0, 3, 2), (1, 1, 3, 0)]
+    assert glued_parts(labels, edges) == [((1, 1), ((0, 0, 1, 1),)),
+                                          ((0, 0), ((0, 0, 1, 2), (0, 1, 1, 0)))]

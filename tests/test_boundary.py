@@ -54,6 +54,26 @@ def test_gaps_round_trip(ts):
         assert bd.canonical(bd.from_gaps(bd.gaps(ts))) == bd.canonical(ts)
 
 
+@given(tokens, st.integers(0, 7))
+def test_the_gap_form_is_the_same_over_slots_as_over_tokens(ts, vertex):
+    # Name each half-edge by a slot (its position), as a graph's boundary does: the gap form
+    # over slots, read back through the slots' tokens, is the gap form over tokens.
+    slots = [(vertex, k) if t >= 0 else t for k, t in enumerate(ts)]
+    token_of = {(vertex, k): t for k, t in enumerate(ts) if t >= 0}
+    assert tuple((token_of[s], n) for s, n in bd.gaps(slots)) == bd.gaps(ts)
+    back = bd.from_gaps(bd.gaps(slots))
+    assert bd.winding(back) == (bd.winding(ts) if bd.halves(ts) else 0)
+    assert [it for it in back if isinstance(it, tuple)] == [it for it in slots
+                                                           if isinstance(it, tuple)]
+
+
+def test_the_string_form_tells_the_complete_graph_from_the_empty_one():
+    assert bd.gaps((bd.UP,)) == bd.gaps(()) == ()
+    assert bd.from_gaps((), complete=True) == (bd.UP,)
+    assert bd.from_gaps(()) == ()
+    assert bd.from_gaps(((0, 2), (1, -1)), complete=True) == (0, bd.UP, bd.UP, 1, bd.DOWN)
+
+
 def test_paper_examples():
     # ∂G₁ = y∧b̄ā: shifted strings are equal (§3.3) and ∧x∨ cancels inside a string.
     y, b, a = 0, 2, 4

@@ -20,7 +20,7 @@ def spliced(match, target):
     used = sorted(k for _, pos in match for k in pos)
     assert used == list(range(len(target)))
     for p, pos in match:
-        assert [target[k][0] for k in pos] == [t for t, _ in p.toks]
+        assert [target[k][0] for k in pos] == [t for t, _ in p.gaps]
 
 
 def test_paper_example_abcdefghi():
@@ -115,4 +115,4 @@ def test_any_splice_of_pieces_is_found(data):
         # Between consecutive half-edges of a piece the target turns as the piece does.
         for q in range(len(pos)):
             if len(pos) > 1:
-                assert _turns_between(target, pos[q], pos[(q + 1) % len(pos)]) == p.toks[q][1]
+                assert _turns_between(target, pos[q], pos[(q + 1) % len(pos)]) == p.gaps[q][1]

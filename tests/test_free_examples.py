@@ -15,7 +15,7 @@ from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_parser import load_ggr, parse_ggr
 from runtime.engine.free_engine import FreeEngine
 from runtime.output.free_svg import render_free_svg
-from runtime.engine.rejections import Rejection
+from runtime.geometry.rejections import Rejection
 
 EXAMPLES = ["koch", "honda-tree", "facade", "tiles", "rosette"]
 

@@ -5,7 +5,7 @@ from dataclasses import replace
 
 from grammar_lang.rules import Header
 from grammar_lang.vocabulary import Vocabulary
-from runtime.engine.host import Tables
+from runtime.geometry.tables import Tables
 from runtime.verifier import as_reference
 from tests.hand_examples import RECTANGLE, make
 

@@ -1,6 +1,7 @@
 """Union-find and connected components, written once for the whole project.
 
-Two forms, because the callers are of two sizes. `DisjointSet` and `components` are plain
+`glued_parts` cuts a graph of primitive instances into its components, renumbered. Two forms
+of the rest, because the callers are of two sizes. `DisjointSet` and `components` are plain
 Python over a few dozen items (a rule side, a rewrite's new vertices), where building a scipy
 matrix would cost more than the walk; `component_labels` hands whole drawings (thousands of
 segments, as numpy arrays) to scipy's compiled `connected_components`.
@@ -8,7 +9,7 @@ segments, as numpy arrays) to scipy's compiled `connected_components`.
 
 from __future__ import annotations
 
-from typing import Hashable, Iterable, TypeVar
+from typing import Hashable, Iterable, Sequence, TypeVar
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -61,6 +62,23 @@ def glued_components(items: Iterable[T],
                      edges: Iterable[tuple[T, int, T, int]]) -> list[list[T]]:
     """`components` for graphs whose edges glue slots: (vertex, slot, vertex, slot)."""
     return components(items, ((v, w) for v, _, w, _ in edges))
+
+
+def glued_parts(labels: Sequence[int], edges: Iterable[tuple[int, int, int, int]]
+                ) -> list[tuple[tuple[int, ...], tuple[tuple[int, int, int, int], ...]]]:
+    """The connected components of a graph on vertices 0..n-1 with primitive `labels[v]` and
+    glued slot pairs `edges`, each renumbered from 0 in vertex order: (labels, sorted edges)."""
+    edges = list(edges)
+    comps = glued_components(range(len(labels)), edges)
+    where: dict[int, tuple[int, int]] = {}      # vertex → (its component, its new number)
+    for c, comp in enumerate(comps):
+        for k, v in enumerate(comp):
+            where[v] = (c, k)
+    local: list[list] = [[] for _ in comps]    # each edge filed once: linear, not n × m
+    for v, i, w, j in edges:
+        c, a = where[v]
+        local[c].append((a, i, where[w][1], j))
+    return [(tuple(labels[v] for v in comp), tuple(sorted(es))) for comp, es in zip(comps, local)]
 
 
 def component_labels(n: int, ends: np.ndarray) -> tuple[int, np.ndarray]:

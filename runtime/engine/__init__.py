@@ -1,4 +1,5 @@
 """The rewriting engine: the host drawing and its indexes (`host`), anchored matching of rule
 sides (`matching`), DPO/SPO rewriting (`rewrite`), rule choice (`schedule`), the costs that
-steer it (`costs`), why a proposal was refused (`rejections`) and the loop that runs it all
-(`generate`); `free_host`, `free_match`, `free_engine` run hand-written productions."""
+steer it (`costs`) and the loop that runs it all (`generate`); `free_host`, `free_match`,
+`free_engine` run hand-written productions. The engine stands on runtime.geometry, which
+places each change and never imports the engine."""

@@ -30,7 +30,7 @@ from grammar_lang.rules import Grammar
 from .free_host import Element, FreeHost
 from .free_match import Binding, Matcher
 from .generate import MAX_STALL, Summary
-from .rejections import Rejection
+from ..geometry.rejections import Rejection
 
 MATCH_TRIES = 64    # matches tried per production and step before it counts as not applicable
 

@@ -21,14 +21,17 @@ from grammar_lang import limits
 from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
-from .costs import Cost, NoCost, Stats, metropolis_accepts
+from ..geometry.change import Change
 from ..geometry.framing import place_frame, random_inside
-from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
-from .host import Host, Point, Tables
 from ..geometry.landing import outer_label, sectors, spot
+from ..geometry.rejections import Rejection
+from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
+from ..geometry.spatial import Point
+from ..geometry.tables import Tables
+from .costs import Cost, NoCost, Stats, metropolis_accepts
+from .host import Host
 from .matching import Match, iter_matches
-from .rejections import Rejection
-from .rewrite import Change, DirectedRule, commit, plan
+from .rewrite import DirectedRule, commit, plan
 from .schedule import Schedule
 
 # Stop after this many proposals in a row that could not be placed or were refused.

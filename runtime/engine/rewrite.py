@@ -14,8 +14,9 @@ deleted instead and both its slots are left open in the result.
 
 The gluing of the replacement into the hole is the kernel's (grammar_lang.algorithms.dpo); this
 module finds the contexts (dangling condition, SPO, the host edges matched by wires) and
-applies the change. `plan` only computes the change (`Change`); geometry decides the positions and `commit` applies
-it through the host's journal, returning the operations so that a step can be undone and redone.
+applies the change. `plan` only computes the change (a `Change`, runtime.geometry.change);
+geometry decides the positions and `commit` applies it through the host's journal, returning
+the operations so that a step can be undone and redone.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from grammar_lang.algorithms.dpo import join_interface
 from grammar_lang.graph import Side, Slot
 from grammar_lang.rules import Rule
 
+from ..geometry.change import Change
 from .host import Host, Point
 from .matching import Match, Pattern
 
@@ -57,32 +59,6 @@ class DirectedRule:
             raise ValueError(f"rule {rule.name}: the two sides' boundary strings differ")
         return DirectedRule(rule, forward, Pattern.build(pat, rings), rep,
                             tuple(zip(p_open, r_open)))
-
-
-@dataclass(frozen=True)
-class Change:
-    """What a rule application removes, adds and glues, before positions are known."""
-
-    rule: DirectedRule
-    match: Match
-    removed: tuple[int, ...]
-    new: tuple[tuple[int, int], ...]          # (host id, primitive)
-    glue: tuple[tuple[Slot, Slot], ...]       # edges to create, host slots
-    cut: tuple[Slot, ...]                     # host edges matched by wires, to unglue
-    partner: dict                             # slot → partner after the change, where changed
-
-    def partner_after(self, host: Host, v: int, i: int) -> Slot | None:
-        s = self.partner.get((v, i), 0)
-        return host.link[v][i] if s == 0 else s
-
-    def adjacency(self, host: Host, v: int, prim: int) -> list[tuple[int, Slot]]:
-        """(slot, partner) of every glued slot of v after the change."""
-        out = []
-        for i in range(len(host.t.rings[prim])):
-            s = self.partner_after(host, v, i)
-            if s is not None:
-                out.append((i, s))
-        return out
 
 
 def plan(host: Host, rule: DirectedRule, match: Match, spo: bool = False) -> Change:

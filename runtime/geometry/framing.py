@@ -12,12 +12,12 @@ from __future__ import annotations
 from grammar_lang.diagnostics import error
 from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives
 
-from ..engine.host import Host
+from .change import HostView
 
 START_TRIES = 8       # solver rounds for a frame's start graph
 
 
-def place_frame(host: Host, frame: Frame, rng=None) -> None:
+def place_frame(host: HostView, frame: Frame, rng=None) -> None:
     """The frame in the empty host: bare, one border edge per side, when it can be drawn so;
     else its `start` (the example's frame component), the rest solved around its corners."""
     h = host.header
@@ -44,7 +44,7 @@ def place_frame(host: Host, frame: Frame, rng=None) -> None:
         _place_start(host, frame, ids, rng)
 
 
-def _mark(host: Host, frame: Frame, ids: list[int]) -> None:
+def _mark(host: HostView, frame: Frame, ids: list[int]) -> None:
     """What the host knows of its frame: pinned corners, the inside face, border labels."""
     h = host.header
     c0, c1 = frame.corners[0], frame.corners[1]
@@ -61,11 +61,11 @@ def _mark(host: Host, frame: Frame, ids: list[int]) -> None:
     host.on_border = border_primitives(h.primitives, host.border_labels)
 
 
-def _place_start(host: Host, frame: Frame, corner_ids: list[int], rng) -> None:
+def _place_start(host: HostView, frame: Frame, corner_ids: list[int], rng) -> None:
     """The start graph's corners are the placed corners; every other vertex is new, and the
     solver places them all in one move, as a rule's right side is placed."""
     import numpy as np
-    from ..engine.rewrite import Change
+    from .change import Change
     from .solver import Solver
     start = frame.start
     by_prim = {c.prim: v for c, v in zip(frame.corners, corner_ids)}
@@ -104,7 +104,7 @@ def _counter_clockwise(frame: Frame) -> bool:
     return sum(cs[k].x * cs[(k + 1) % n].y - cs[(k + 1) % n].x * cs[k].y for k in range(n)) > 0
 
 
-def random_inside(host: Host, rng) -> tuple[float, float]:
+def random_inside(host: HostView, rng) -> tuple[float, float]:
     """A point drawn uniformly inside the frame's box, kept a tenth of it from the sides, and
     inside the frame itself when it is not a rectangle (a few tries)."""
     x0, y0, x1, y1 = host.frame.box

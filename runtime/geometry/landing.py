@@ -18,7 +18,11 @@ from typing import Callable
 
 import numpy as np
 
-from ..engine.host import Host, Point, Slot, Tables
+from grammar_lang.graph import Slot
+
+from .change import HostView
+from .spatial import Point
+from .tables import Tables
 
 
 def _angle(t: Tables, p: int, i: int) -> float:
@@ -65,7 +69,7 @@ def sectors(t: Tables) -> dict[str, list[tuple[int, float, float]]]:
     return out
 
 
-def spot(host: Host, rng: np.random.Generator, corners: list[tuple[int, float, float]],
+def spot(host: HostView, rng: np.random.Generator, corners: list[tuple[int, float, float]],
          reach: float) -> Point | None:
     """A point inside one of `corners` at a random existing vertex, about `reach` away;
     None when the drawing has no such vertex."""

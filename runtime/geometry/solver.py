@@ -34,10 +34,9 @@ import numpy as np
 
 from grammar_lang.algorithms.components import DisjointSet
 
-from ..engine.host import Host, Point
-from ..engine.rejections import Rejection
-from ..engine.rewrite import Change
-from .spatial import seg_near
+from .change import Change, HostView
+from .rejections import Rejection
+from .spatial import Point, seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
@@ -66,7 +65,7 @@ class Placement:
 
 
 class Solver:
-    def __init__(self, host: Host, change: Change, rng: np.random.Generator,
+    def __init__(self, host: HostView, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
                  floating: bool = False, cache: SystemCache | None = None,
                  strict: bool = True):
@@ -568,7 +567,7 @@ def _dist(p: Point, q: Point) -> float:
 
 
 
-def place_side(host: Host, side, rng: np.random.Generator,
+def place_side(host: HostView, side, rng: np.random.Generator,
                tries: int = 4) -> tuple[list[dict[int, Point]], bool]:
     """Positions for the vertices of an angle graph on its own (a rule side, say, drawn by
     `ggc report`), one dict per connected component (`side.components()` order), each placed
@@ -579,7 +578,6 @@ def place_side(host: Host, side, rng: np.random.Generator,
     for which `tries` rounds of samples find no placement is placed keeping only the
     directions and positive lengths (no class ranges, fixed lengths, tiles or crossings). `host` must
     be empty; it is left unchanged. ValueError when not even that is possible."""
-    from ..engine.rewrite import Change
     assert len(host) == 0, "place_side draws on an empty host"
     out, strict = [], True
     for comp in side.components():

@@ -18,7 +18,7 @@ from grammar_lang.graph import Side, face_walk
 
 from ..output.drawing import load_drawing
 from ..engine.matching import find_match
-from ..engine.rejections import Rejection
+from ..geometry.rejections import Rejection
 from .session import Quit, Session
 from ..verifier import check_drawing
 
@@ -446,11 +446,8 @@ def _open_boundaries(h, comp: list[int]) -> list[bd.Tokens]:
                 continue
             walk = face_walk(side, (local[v], i), rings)
             seen.update(slot for slot, _ in walk)
-            tokens: list[int] = []
-            for (lv, li), turns in walk:
-                tokens.append(rings[side.vertices[lv]][li])
-                tokens.extend(bd.turns(turns))
-            out.append(bd.canonical(tokens))
+            out.append(bd.canonical(bd.from_gaps((side.slot_token(slot, rings), turns)
+                                                 for slot, turns in walk)))
     return out
 
 

@@ -1,5 +1,9 @@
 """Why a proposal was not applied: one name for each reason, counted in a run's summary.
 
+It sits in geometry, the lower layer, because most reasons are the solver's (a placement that
+breaks a length, crosses an edge, leaves the frame); the engine, which adds its own (the cost,
+the dangling condition), imports it from here.
+
 A `str` enum, so a reason prints, sorts, compares and hashes as its text ("edge length"),
 which is what the summary, the REPL and scripts reading them see.
 """

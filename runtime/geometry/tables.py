@@ -1,0 +1,104 @@
+"""What the header says about each primitive slot, precomputed as plain tuples for the engine
+and the geometry: rings, edge directions, the faces on either side, length ranges, typical
+lengths and the clearance kept between distinct vertices and edges; and the spatial grid's
+cell side that follows from them."""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, replace
+
+from grammar_lang.rules import Header
+from grammar_lang.source import EdgeClass
+from grammar_lang.vocabulary import Vocabular, Vocabulary
+
+from .spatial import Point
+
+
+@dataclass(frozen=True)
+class Tables(Vocabular):
+    """What the header says about each primitive slot, precomputed as plain tuples, with the
+    header's vocabulary (its unit 1 where the header gives none)."""
+
+    rings: tuple[tuple[int, ...], ...]
+    direction: tuple[tuple[Point, ...], ...]   # unit vector pointing away from the vertex
+    left: tuple[tuple[str, ...], ...]          # face on the left walking away from the vertex
+    right: tuple[tuple[str, ...], ...]
+    label: tuple[tuple[int, ...], ...]
+    outer: tuple[str | None, ...]              # face label seen just below direction 180°
+    # Per edge label: (min, max, fixed or None, tile or None)
+    lengths: tuple[tuple[float, float, float | None, float | None], ...]
+    label_class: tuple[str, ...]
+    label_faces: tuple[tuple[str, str], ...]
+    vocabulary: Vocabulary
+    # Per edge label: the example's median length (nan when unknown): where new edges are drawn.
+    typical: tuple[float, ...] = ()
+
+    @functools.cached_property
+    def clearance(self) -> float:
+        """How far apart distinct vertices and edges must stay: a fiftieth of the unit, or a
+        quarter of the shortest edge any class allows, whichever is less (never zero)."""
+        u = self.unit
+        c = min(0.02 * u, 0.25 * min((l[0] for l in self.lengths), default=u))
+        return max(c, 1e-9 * u)
+
+    @property
+    def one_face_label(self) -> bool:
+        """Every face has the same label, so no placement can put a face in the wrong place."""
+        return all(l == self.exterior and r == self.exterior for l, r in self.label_faces)
+
+    @staticmethod
+    def build(header: Header) -> "Tables":
+        labels = header.labels
+        unit = header.unit if header.unit and header.unit > 0 else 1.0
+        classes = {c.name: c.resolved(unit) for c in header.classes}
+        rings, dirs, lefts, rights, labs, outer = [], [], [], [], [], []
+        for prim in header.primitives:
+            d, l, r, lb = [], [], [], []
+            for t in prim.ring:
+                lab = labels[t >> 1]
+                d.append(unit_vector(lab.direction(bool(t & 1))))
+                bar = bool(t & 1)
+                l.append(lab.right if bar else lab.left)
+                r.append(lab.left if bar else lab.right)
+                lb.append(t >> 1)
+            rings.append(tuple(prim.ring))
+            dirs.append(tuple(d))
+            lefts.append(tuple(l))
+            rights.append(tuple(r))
+            labs.append(tuple(lb))
+            # The sector from the last half-edge (largest angle) round to the first holds 180°.
+            outer.append(l[-1] if l else None)
+        lengths = []
+        for lab in labels:
+            c = classes.get(lab.cls) or EdgeClass(lab.cls).resolved(unit)
+            fixed = lab.length if (c.rigid and lab.length) else c.fixed
+            lengths.append((float(c.min_length), float(c.max_length), fixed, c.tile))
+        return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
+                      tuple(outer), tuple(lengths), tuple(l.cls for l in labels),
+                      tuple((l.left, l.right) for l in labels),
+                      replace(header.vocabulary, unit=unit),
+                      tuple(math.nan if l.typical is None else l.typical for l in labels))
+
+
+def grid_cell(t: Tables) -> float:
+    """The grid's cell side: the unit, or a quarter of the longest edge a label allows when
+    that is longer (compiled grammars allow 4 units, so this is their unit), so that no edge
+    fills more than a few cells however the unit and the lengths were edited. A border's
+    edges are left out: a frame's sides are as long as the frame, and cells sized for them
+    would each hold hundreds of vertices (its few long edges are filed in many cells)."""
+    border = {c.name for c in t.vocabulary.classes if c.border}
+    longest = max((hi for (_, hi, _, _), cls in zip(t.lengths, t.label_class)
+                   if math.isfinite(hi) and cls not in border), default=0.0)
+    return max(t.unit, longest / 4)
+
+
+def unit_vector(degrees: float) -> Point:
+    """The direction as a unit vector, exact at multiples of 90° (where sin(pi) would leave
+    1e-16 and put the ends of a horizontal edge at different heights)."""
+    q, r = divmod(degrees, 90.0)
+    if r == 0.0:
+        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(q) % 4]
+    ang = math.radians(degrees)
+    return (math.cos(ang), math.sin(ang))
