@@ -1,6 +1,7 @@
 """Scenes in a frame (paper Appendix A): the frame is the border of the space."""
 
 import functools
+from collections import Counter
 from pathlib import Path
 
 import pytest
@@ -74,6 +75,17 @@ def test_a_ground_without_a_frame_is_closed_into_one(path):
     assert (min(gx), y0) not in vertices and (max(gx), y0) not in vertices
 
 
+def assert_only_starters_float(host, g):
+    """One component holds the frame; every other is one a starter makes (a window)."""
+    free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
+    comps = host.components()
+    framed = [c for c in comps if host.pinned & set(c)]
+    assert len(framed) == 1
+    for c in comps:
+        if c is not framed[0]:
+            assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
+
+
 FRAMED = sorted(p.name for p in EXAMPLES.glob("*.gg") if find_frame(load_example(p)) is not None)
 
 
@@ -92,20 +104,13 @@ def test_the_framed_examples_are_the_scenes():
 def test_framed_examples_grow_standing_on_their_ground(name, seed):
     """Every structure stands on the ground: one component holds the frame and all that
     touches it, and anything else is what the example has free-standing (a window)."""
-    from collections import Counter
     ex, g = _framed(name)
-    free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
     from runtime.engine.costs import default_cost
     eng = Engine(g, seed=seed, cost=default_cost(g.header, 40))     # as ggrun runs it
     eng.run(40)
     host = eng.host
     assert len(host) > 4 + 4          # something stands on the frame
-    comps = host.components()
-    framed = [c for c in comps if host.pinned & set(c)]
-    assert len(framed) == 1
-    for c in comps:
-        if c is not framed[0]:
-            assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
+    assert_only_starters_float(host, g)
     failures = check_drawing(ex, host.to_drawing())
     assert failures == [], "\n".join(f.render() for f in failures[:3])
 
@@ -248,19 +253,12 @@ def test_an_extent_keeps_the_proportions_of_a_slanted_frame(castle):
 def test_in_a_frame_nothing_floats_but_what_the_example_has_free_standing(seed):
     """Every component apart from the frame's own is one a starter makes (a window in a
     tower), never a part cut off a structure (a roof lifted off its tower)."""
-    from collections import Counter
     res = compile_example(load_example(SCENES["castle-scene"]))
     g = res.grammar
-    free = {tuple(sorted(Counter(s.lhs.vertices).items())) for s in g.rules if s.is_starter}
     eng = Engine(g, seed=seed)
     eng.run(120)
     host = eng.host
-    comps = host.components()
-    framed = [c for c in comps if host.pinned & set(c)]
-    assert len(framed) == 1
-    for c in comps:
-        if c is not framed[0]:
-            assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
+    assert_only_starters_float(host, g)
 
 
 @pytest.mark.parametrize("seed", [0, 1])
