@@ -336,7 +336,9 @@ class Solver:
                 known[e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
             if tile and fixed is None:
                 tiles.append((e, tile))
-        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, centre, tiles)
+        context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
+        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, centre, tiles,
+                      *context)
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
@@ -382,7 +384,7 @@ class Solver:
                                          if self.prim(v) not in self.host.on_border):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
-        if self.strict and not self._planar(pos, edges):
+        if self.strict and not self._planar(pos, edges, rd):
             return None
         return pos
 
@@ -409,46 +411,56 @@ class Solver:
         return y
 
     # --- planarity --------------------------------------------------------------------------
-    def _planar(self, pos: dict[int, Point], edges) -> bool:
+    def _planar_context(self, free: list[int]) -> tuple[frozenset, frozenset]:
+        """What a round's crossing tests leave out, the same for each of its samples: the
+        vertices that are replaced or moved, and the host edges that are cut or touch them."""
         host = self.host
-        clr = self.clearance
-        gone = self.removed | {v for v in pos if v in host.prim}
+        gone = self.removed.union(v for v in free if v in host.prim)
         ignore = {min(s, host.link[s[0]][s[1]]) for s in self.change.cut}
         for v in gone:
             for i, s in enumerate(host.link[v]):
                 if s is not None:
                     ignore.add(min((v, i), s))
+        return frozenset(gone), frozenset(ignore)
 
-        def at(v):
-            p = pos.get(v)
-            return host.pos[v] if p is None else p
-
-        segs = [(v, w, at(v), at(w)) for v, _, w, _, _, _ in edges]
+    def _planar(self, pos: dict[int, Point], edges, rd: "_Round") -> bool:
+        # Each test only asks whether some pair is too close, so the order in which pairs are
+        # tried does not matter: the first one found decides.
+        host = self.host
+        hpos, link, grid = host.pos, host.link, host.grid
+        clr = self.clearance
+        gone, ignore = rd.gone, rd.ignore
         # Vertices: no two may coincide.
-        pts = sorted(pos.items())
-        for k, (v, p) in enumerate(pts):
-            for q in host.grid.points_near(p[0] - clr, p[1] - clr, p[0] + clr, p[1] + clr):
-                if q not in gone and _dist(p, host.pos[q]) < clr:
-                    self._fail(Rejection.COINCIDENT)
-                    return False
-            for w, p2 in pts[k + 1:]:
+        pts = list(pos.values())
+        for k, p in enumerate(pts):
+            if grid.point_within(p, clr, gone):
+                self._fail(Rejection.COINCIDENT)
+                return False
+            for p2 in pts[k + 1:]:
                 if _dist(p, p2) < clr:
                     self._fail(Rejection.COINCIDENT)
                     return False
+        segs = []
+        for v, _, w, _, _, _ in edges:
+            a, c = pos.get(v), pos.get(w)
+            segs.append((v, w, hpos[v] if a is None else a, hpos[w] if c is None else c))
         # Edges: no crossing or touching except at a shared end.
         for k, (v, w, a, c) in enumerate(segs):
-            near = host.grid.segments_near(min(a[0], c[0]) - clr, min(a[1], c[1]) - clr,
-                                           max(a[0], c[0]) + clr, max(a[1], c[1]) + clr)
-            for key in sorted(near - ignore):
-                x, i = key
-                y = host.link[x][i][0]
-                if x in (v, w) or y in (v, w):
+            ax, ay, cx, cy = a[0], a[1], c[0], c[1]
+            near = grid.segments_near((ax if ax < cx else cx) - clr, (ay if ay < cy else cy) - clr,
+                                      (ax if ax > cx else cx) + clr, (ay if ay > cy else cy) + clr)
+            for key in near:
+                if key in ignore:
                     continue
-                if seg_near(a, c, host.pos[x], host.pos[y], clr):
+                x = key[0]
+                y = link[x][key[1]][0]
+                if x == v or x == w or y == v or y == w:
+                    continue
+                if seg_near(a, c, hpos[x], hpos[y], clr):
                     self._fail(Rejection.CROSSING)
                     return False
             for v2, w2, a2, c2 in segs[k + 1:]:
-                if v2 in (v, w) or w2 in (v, w):
+                if v2 == v or v2 == w or w2 == v or w2 == w:
                     continue
                 if seg_near(a, c, a2, c2, clr):
                     self._fail(Rejection.CROSSING)
@@ -472,6 +484,8 @@ class _Round:
     hi: np.ndarray
     centre: np.ndarray       # where drawn lengths are centred
     tiles: list
+    gone: frozenset = frozenset()      # what the crossing tests leave out (_planar_context)
+    ignore: frozenset = frozenset()
 
 
 @dataclass(frozen=True)

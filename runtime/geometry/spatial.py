@@ -3,6 +3,12 @@
 Cells are squares of side `cell`. A segment is filed in every cell its bounding box touches,
 which is a handful for edges of about the unit length the grid is sized for. Queries return ids
 sorted, so nothing depends on insertion or hash order.
+
+Points are also filed in much finer cells (side `fine`, a couple of clearances): the test for a
+vertex on top of another looks at a radius of one clearance, and as a drawing fills in, a unit
+cell comes to hold dozens of vertices (curl at 20,000 vertices: 17 a cell, against 5 at 1,000).
+That test is exact, so it does not depend on the cells; the coarse cells stay as they are for
+the queries whose answer is a superset that depends on them (candidates, bounds).
 """
 
 from __future__ import annotations
@@ -14,10 +20,12 @@ Point = tuple[float, float]
 
 
 class Grid:
-    def __init__(self, cell: float):
-        if not cell > 0:
+    def __init__(self, cell: float, fine: float | None = None):
+        if not cell > 0 or (fine is not None and not fine > 0):
             raise ValueError("grid cell size must be positive")
         self.cell = float(cell)
+        self.fine = float(fine or cell)
+        self._fine_cells: dict[tuple[int, int], list] = {}
         self._seg_cells: dict[tuple[int, int], set] = {}
         self._pt_cells: dict[tuple[int, int], set] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
@@ -71,6 +79,8 @@ class Grid:
         self._pts[pid] = p
         k = self.key(p)
         self._pt_cells.setdefault(k, set()).add(pid)
+        f = self.fine
+        self._fine_cells.setdefault((math.floor(p[0] / f), math.floor(p[1] / f)), []).append(pid)
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
             n = d.get(key, 0)
             d[key] = n + 1
@@ -84,6 +94,12 @@ class Grid:
         cell.discard(pid)
         if not cell:
             del self._pt_cells[k]
+        f = self.fine
+        fk = (math.floor(p[0] / f), math.floor(p[1] / f))
+        fine = self._fine_cells[fk]
+        fine.remove(pid)
+        if not fine:
+            del self._fine_cells[fk]
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
             d[key] -= 1
             if not d[key]:
@@ -98,6 +114,20 @@ class Grid:
             if s:
                 out.extend(s)
         return sorted(out)
+
+    def point_within(self, p: Point, r: float, skip=()) -> bool:
+        """Is a point not in `skip` closer than `r` to `p`? Exact; `r` about `fine` or less
+        keeps it to a few nearly empty cells."""
+        f, cells, pts = self.fine, self._fine_cells, self._pts
+        px, py = p
+        for i in range(math.floor((px - r) / f), math.floor((px + r) / f) + 1):
+            for j in range(math.floor((py - r) / f), math.floor((py + r) / f) + 1):
+                for q in cells.get((i, j), ()):
+                    if q not in skip:
+                        x, y = pts[q]
+                        if ((px - x) ** 2 + (py - y) ** 2) ** 0.5 < r:
+                            return True
+        return False
 
     def bounds(self) -> tuple[float, float, float, float] | None:
         """The box of occupied point cells (cell-aligned), or None when empty. Kept until a
