@@ -151,7 +151,8 @@ class Schedule:
         absent = host.prim_count == 0
         if absent.any():
             keys[level.requires[:, absent].any(axis=1)] = -1.0
-        return [int(k) for k in np.argsort(-keys, kind="stable") if keys[k] >= 0]
+        order = np.argsort(-keys, kind="stable")
+        return order[keys[order] >= 0].tolist()
 
     def _draw(self, level: Level, ks: list[int], host: Host, rng: np.random.Generator,
               probes: int | None):

@@ -27,7 +27,8 @@ tests, so a step's cost does not grow with the drawing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import statistics
+from dataclasses import dataclass, field
 from typing import Callable, Iterator
 
 import numpy as np
@@ -87,6 +88,7 @@ class Solver:
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         self.clearance = host.t.clearance
+        self._adjacency: dict[int, list] = {}
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.unique = False
@@ -119,8 +121,10 @@ class Solver:
             if lab in host.side_labels:
                 continue     # a frame's side is as long as the frame, not a local scale
             seen(v, host.link[v][i][0], lab)
-        scale = float(np.median(lengths)) if lengths else host.t.unit
-        return scale, (float(np.median(ratios)) if ratios else 1.0)
+        # statistics.median: the same value as numpy's for a handful of floats, at a tenth of
+        # the cost (this runs once per proposal).
+        scale = statistics.median(lengths) if lengths else host.t.unit
+        return scale, (statistics.median(ratios) if ratios else 1.0)
 
     def _aims(self) -> dict[int, Point]:
         """Where each new vertex is aimed: beside the old vertices it is glued to, else beside
@@ -156,7 +160,12 @@ class Solver:
         return self.host.prim[v] if p is None else p
 
     def adjacency(self, v: int):
-        return self.change.adjacency(self.host, v, self.prim(v))
+        # Kept for the solver's life: the host is back as it was whenever a round is built
+        # (a placement that fails its face test is undone before the next one is asked for).
+        adj = self._adjacency.get(v)
+        if adj is None:
+            adj = self._adjacency[v] = self.change.adjacency(self.host, v, self.prim(v))
+        return adj
 
     def _fail(self, why: Rejection) -> None:
         self.failures[why] = self.failures.get(why, 0) + 1
@@ -169,16 +178,15 @@ class Solver:
             yield Placement({})
             return
         for rnd in range(1, self.I + 1):
-            system = self._system(free)
-            if system is None:
+            rd = self._system(free)
+            if rd is None:
                 self._fail(Rejection.OVER_CONSTRAINED)
-            elif system[0] is None:
-                self._fail(system[1])
+            elif isinstance(rd, Rejection):
+                self._fail(rd)
             else:
                 f = 1.0
-                rd = self._round(free, system[0])
                 for _ in range(1 if self.unique else self.J):
-                    pos = self._sample(free, *system, rd, f)
+                    pos = self._sample(free, rd, f)
                     if pos is None:
                         f = f * SHRINK if self.last_failure in CROWDED \
                             else min(self.f_max, f / SHRINK)
@@ -215,9 +223,9 @@ class Solver:
         return part
 
     # --- the linear system ------------------------------------------------------------------
-    def _system(self, free: list[int]):
+    def _edges(self, free: list[int]) -> list[tuple]:
+        """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
-        idx = {v: k for k, v in enumerate(free)}
         edges, seen = [], set()
         for v in free:
             pv = self.prim(v)
@@ -227,10 +235,19 @@ class Solver:
                     continue
                 seen.add(key)
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        fs = set(free)
         for (v, i), (w, j) in self.bridges:
-            if v not in idx and w not in idx:
+            if v not in fs and w not in fs:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        return edges
+
+    def _system(self, free: list[int]) -> "_Round | Rejection | None":
+        """The round's system and constants; None when it is inconsistent, the reason when
+        no sample of it can pass."""
+        host, t = self.host, self.host.t
+        edges = self._edges(free)
+        idx = {v: k for k, v in enumerate(free)}
         shape = (tuple(OLD if v in host.prim else GLUED if v in self.glued else LOOSE
                        for v in free),
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
@@ -240,64 +257,50 @@ class Solver:
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
         b = _right_hand_side(shape[1], edges, host.pos)
-        M, Mp = fact.M, fact.Mp
-        res = b - M @ (Mp @ b)
+        res = b - fact.M @ (fact.Mp @ b)
         if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
             return None
-        # Lengths the system fixes whatever the target (their row of x = R t + c is constant):
-        # one outside its class's range dooms every sample, so the round is skipped.
-        nF2 = 2 * len(free)
-        A, scale, R, fixed_rows = fact.A, fact.scale, fact.R, fact.fixed_rows
-        c = scale[nF2:] * (Mp[nF2:] @ b)
         # A system with one solution gives the same sample every time: one try is enough.
         self.unique = fact.unique
-        if not self.strict:
-            return edges, A, b, scale, Mp
-        tol = 1e-7 * t.unit
-        for e in np.flatnonzero(fixed_rows):
-            lo, hi, _, _ = t.lengths[edges[e][5]]
-            if not (c[e] > tol and lo - tol <= c[e] <= hi + tol):
-                return None, Rejection.LENGTH_FIXED
-        # More generally a length is affine in the target, which ranges over a box (positions
-        # within 3σ of their centre, lengths within their draw range): when a length's range
-        # over that box misses its class, no sample can pass and the round is skipped.
-        mid, half = self._target_box(free, edges)
-        centre = R @ mid + c
-        spread = np.abs(R) @ half
-        for e, (*_, lab) in enumerate(edges):
-            lo, hi, _, _ = t.lengths[lab]
-            if centre[e] + spread[e] <= tol or centre[e] + spread[e] < lo - tol \
-                    or centre[e] - spread[e] > hi + tol:
-                return None, Rejection.LENGTH_RANGE
-        return edges, A, b, scale, Mp
+        rd = self._round(free, edges, fact, b)
+        return self._doomed(rd, fact, b, 2 * len(free)) if self.strict else rd
 
-    def _target_box(self, free, edges) -> tuple[np.ndarray, np.ndarray]:
+    def _doomed(self, rd: "_Round", fact: "Factor", b: np.ndarray, nF2: int):
+        """`rd`, or why no sample of it can pass. Lengths the system fixes whatever the target
+        (their row of x = R t + c is constant): one outside its class's range dooms every
+        sample. More generally a length is affine in the target, which ranges over a box
+        (positions within 3σ of their centre, lengths within their draw range): when a
+        length's range over that box misses its class, no sample can pass either."""
+        tol = 1e-7 * self.host.t.unit
+        c = fact.scale[nF2:] * (fact.Mp[nF2:] @ b)
+        fr = fact.fixed_rows
+        if fr.any():
+            cf = c[fr]
+            if not np.all((cf > tol) & (rd.lo[fr] - tol <= cf) & (cf <= rd.hi[fr] + tol)):
+                return Rejection.LENGTH_FIXED
+        mid, half = self._target_box(rd)
+        centre = fact.R @ mid + c
+        spread = fact.absR @ half
+        top = centre + spread
+        if np.any((top <= tol) | (top < rd.lo - tol) | (centre - spread > rd.hi + tol)):
+            return Rejection.LENGTH_RANGE
+        return rd
+
+    def _target_box(self, rd: "_Round") -> tuple[np.ndarray, np.ndarray]:
         """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
-        host, t = self.host, self.host.t
-        u = self.scale
-        nF = len(free)
-        mid = np.zeros(2 * nF + len(edges))
+        nP = len(rd.base)
+        mid = np.empty(nP + len(rd.known))
         half = np.zeros_like(mid)
+        pos = rd.base.copy()
         cx, cy = self._box_centre
-        for k, v in enumerate(free):
-            p = host.pos.get(v)
-            if p is None:
-                mid[2 * k], mid[2 * k + 1] = self.aim.get(v, (cx, cy))
-                half[2 * k] = half[2 * k + 1] = 1.5 * u
-            else:
-                mid[2 * k], mid[2 * k + 1] = p
-        for e, (v, i, w, j, d, lab) in enumerate(edges):
-            lo, hi, fixed, tile = t.lengths[lab]
-            if fixed is not None:
-                mid[2 * nF + e] = fixed
-            elif v in host.prim and host.link[v][i] == (w, j):
-                pv, pw = host.pos[v], host.pos[w]
-                mid[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
-            else:
-                c = self._draw_centre(lab)
-                a = _draw_range(lo, hi, c, SHRINK ** (self.J - 1))[0]
-                bb = _draw_range(lo, hi, c, 1.0)[1]
-                mid[2 * nF + e], half[2 * nF + e] = 0.5 * (a + bb), 0.5 * (bb - a)
+        pos[0::2][rd.aimless[0::2]] = cx
+        pos[1::2][rd.aimless[1::2]] = cy
+        mid[:nP] = pos
+        half[:nP][rd.new] = 1.5 * self.scale
+        a = rd.ranges(SHRINK ** (self.J - 1))[0]
+        bb = rd.ranges(1.0)[1]
+        mid[nP:] = np.where(rd.drawn, 0.5 * (a + bb), rd.known)
+        half[nP:] = np.where(rd.drawn, 0.5 * (bb - a), 0.0)
         return mid, half
 
     def _draw_centre(self, lab: int) -> float:
@@ -309,7 +312,7 @@ class Solver:
         ty = typical[lab] if typical and lab not in self.host.side_labels else math.nan
         return self.stretch * ty if ty == ty else self.scale
 
-    def _round(self, free, edges) -> "_Round":
+    def _round(self, free, edges, fact: "Factor", b: np.ndarray) -> "_Round":
         """What stays the same for every sample of a round, as arrays."""
         host, t = self.host, self.host.t
         nF = len(free)
@@ -337,46 +340,45 @@ class Solver:
             if tile and fixed is None:
                 tiles.append((e, tile))
         context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
-        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, centre, tiles,
-                      *context)
+        tol = 1e-7 * t.unit
+        return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, np.isnan(base),
+                      known, np.isnan(known), lo, hi, centre, tiles, *context,
+                      lo - tol, hi + tol)
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
         nP = len(rd.base)
         x = np.empty(nP + len(rd.known))
         noise = rng.normal(0.0, 0.5 * self.scale * f, size=nP)
-        cx, cy = self.center()
+        cx, cy = self.center()          # asked every sample: a floating part's draws a place
         pos = rd.base.copy()
-        pos[0::2][rd.aimless[0::2]] = cx
-        pos[1::2][rd.aimless[1::2]] = cy
+        if rd.any_aimless:
+            pos[0::2][rd.aimless[0::2]] = cx
+            pos[1::2][rd.aimless[1::2]] = cy
         x[:nP] = np.where(rd.new, pos + noise, pos)
         draws = rng.random(len(rd.known))
-        a = np.maximum(rd.lo, (1.0 - SPREAD) * rd.centre * f)
-        bb = np.minimum(rd.hi, (1.0 + SPREAD) * rd.centre * f)
-        missed = a > bb        # as in _draw_range: the whole class, or its shortest length
-        whole = missed if f == 1.0 else missed & (rd.hi < a)
-        short = missed & ~whole
-        a, bb = np.where(missed, rd.lo, a), np.where(whole, rd.hi, np.where(short, rd.lo, bb))
-        x[nP:] = np.where(rd.drawn, a + (bb - a) * draws, rd.known)
+        a, _, width = rd.ranges(f)
+        x[nP:] = np.where(rd.drawn, a + width * draws, rd.known)
         return x
 
-    def _sample(self, free, edges, A, b, scale, Mp, rd, f: float = 1.0) -> dict[int, Point] | None:
+    def _sample(self, free, rd: "_Round", f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
         target = self._targets(rd, f)
-        x = target + scale * (Mp @ (b - A @ target))
+        x = target + rd.scale * (rd.Mp @ (rd.b - rd.A @ target))
         nF = len(free)
-        s = x[2 * nF:]
         if rd.tiles and self.strict:
-            x = self._snap_tiles(x, nF, rd, A, b)
+            x = self._snap_tiles(x, nF, rd)
             if x is None:
                 self._fail(Rejection.TILES)
                 return None
-            s = x[2 * nF:]
+        s = x[2 * nF:]
         tol = 1e-7 * t.unit
-        if not np.all((s > tol) & (((rd.lo - tol <= s) & (s <= rd.hi + tol)) | (not self.strict))):
+        ok = (s > tol) & (rd.lo_tol <= s) & (s <= rd.hi_tol) if self.strict else s > tol
+        if not ok.all():
             self._fail(Rejection.EDGE_LENGTH)
             return None
-        pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
+        xy = x[:2 * nF].tolist()
+        pos = {v: (xy[2 * k], xy[2 * k + 1]) for k, v in enumerate(free)}
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
         # every other vertex must be inside it.
@@ -384,28 +386,25 @@ class Solver:
                                          if self.prim(v) not in self.host.on_border):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
-        if self.strict and not self._planar(pos, edges, rd):
+        if self.strict and not self._planar(pos, rd.edges, rd):
             return None
         return pos
 
-    def _snap_tiles(self, x, nF, rd, A, b):
+    def _snap_tiles(self, x, nF, rd: "_Round"):
         """Round tiled lengths to whole multiples and solve again with them pinned. The
         multiple is the nearest one inside the edge's class when there is one (rounding 1.3
         tiles down to 1 would fall below a class whose minimum is 1.1 tiles)."""
-        rows, vals = [], []
+        vals = []
         for e, tile in rd.tiles:
             k = max(1, round(float(x[2 * nF + e]) / tile))
             k_lo, k_hi = math.ceil(rd.lo[e] / tile - 1e-9), math.floor(rd.hi[e] / tile + 1e-9)
             if max(1, k_lo) <= k_hi:
                 k = min(max(k, k_lo), k_hi)
-            row = np.zeros(A.shape[1])
-            row[2 * nF + e] = 1.0
-            rows.append(row)
             vals.append(k * tile)
-        A2 = np.vstack([A, np.array(rows)])
-        b2 = np.concatenate([b, vals])
+        A2, A2p = rd.pinned_system(nF)
+        b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
-        y = x + np.linalg.pinv(A2, rcond=1e-10) @ (b2 - A2 @ x)
+        y = x + A2p @ (b2 - A2 @ x)
         if float(np.abs(A2 @ y - b2).max()) > 1e-7 * self.host.t.unit * (1 + float(np.abs(b2).max()) / self.host.t.unit):
             return None
         return y
@@ -468,13 +467,20 @@ class Solver:
         return True
 
 
-@dataclass(frozen=True)
+@dataclass
 class _Round:
-    """A round's constant arrays: free vertices' base positions (old: where they are, new:
-    their aim), which are new and which have no aim (the change's centre, per sample); edge
-    lengths known in advance (fixed, or kept), which are drawn instead, their class bounds,
-    and the tiled edges."""
+    """A round's system (its edges, matrix, right-hand side, column scales, pseudo-inverse)
+    and constant arrays: free vertices' base positions (old: where they are, new: their aim),
+    which are new and which have no aim (the change's centre, per sample); edge lengths known
+    in advance (fixed, or kept), which are drawn instead, their class bounds, and the tiled
+    edges; what the crossing tests leave out. Draw ranges and the tile-pinned system are
+    made once, when first needed."""
 
+    edges: list
+    A: np.ndarray
+    b: np.ndarray
+    scale: np.ndarray
+    Mp: np.ndarray
     base: np.ndarray
     new: np.ndarray
     aimless: np.ndarray
@@ -484,8 +490,42 @@ class _Round:
     hi: np.ndarray
     centre: np.ndarray       # where drawn lengths are centred
     tiles: list
-    gone: frozenset = frozenset()      # what the crossing tests leave out (_planar_context)
-    ignore: frozenset = frozenset()
+    gone: frozenset          # what the crossing tests leave out (_planar_context)
+    ignore: frozenset
+    lo_tol: np.ndarray       # the class bounds widened by the tolerance
+    hi_tol: np.ndarray
+    _ranges: dict = field(default_factory=dict)
+    _pinned: tuple | None = None
+
+    def __post_init__(self):
+        self.any_aimless = bool(self.aimless.any())
+
+    def ranges(self, f: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
+        width). Within (1 ± SPREAD)·centre·f, inside the class's range, or the whole class
+        when that misses it; when a shrunk range falls below the class, its shortest length."""
+        r = self._ranges.get(f)
+        if r is None:
+            a = np.maximum(self.lo, (1.0 - SPREAD) * self.centre * f)
+            bb = np.minimum(self.hi, (1.0 + SPREAD) * self.centre * f)
+            missed = a > bb
+            whole = missed if f == 1.0 else missed & (self.hi < a)
+            short = missed & ~whole
+            a = np.where(missed, self.lo, a)
+            bb = np.where(whole, self.hi, np.where(short, self.lo, bb))
+            r = self._ranges[f] = (a, bb, bb - a)
+        return r
+
+    def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:
+        """A with a row pinning each tiled length, and its pseudo-inverse: the same for every
+        sample of the round (only the pinned values change)."""
+        if self._pinned is None:
+            rows = np.zeros((len(self.tiles), self.A.shape[1]))
+            for r, (e, _) in enumerate(self.tiles):
+                rows[r, 2 * nF + e] = 1.0
+            A2 = np.vstack([self.A, rows])
+            self._pinned = (A2, np.linalg.pinv(A2, rcond=1e-10))
+        return self._pinned
 
 
 @dataclass(frozen=True)
@@ -500,6 +540,7 @@ class Factor:
     R: np.ndarray
     fixed_rows: np.ndarray
     unique: bool
+    absR: np.ndarray
 
 
 class SystemCache:
@@ -544,7 +585,7 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
     R = P[2 * nF:]
     return Factor(A, scale, M, Mp, R, np.abs(R).max(axis=1, initial=0.0) < 1e-9,
-                  bool(np.abs(P).max(initial=0.0) < 1e-9))
+                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R))
 
 
 def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
@@ -563,16 +604,6 @@ def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
             b[2 * e + 1] += pv[1]
     b[2 * nE:] = fixed
     return b
-
-
-def _draw_range(lo: float, hi: float, c: float, f: float) -> tuple[float, float]:
-    """Where a new edge's target length is drawn: within (1 ± SPREAD)·c·f, inside its class's
-    range [lo, hi], or the whole class when that misses it; when a shrunk range falls below
-    the class, its shortest length."""
-    a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
-    if a > bb:
-        return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
-    return a, bb
 
 
 def _dist(p: Point, q: Point) -> float:
