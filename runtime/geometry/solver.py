@@ -256,52 +256,53 @@ class Solver:
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
-        b = _right_hand_side(shape[1], edges, host.pos)
-        res = b - fact.M @ (fact.Mp @ b)
-        if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
+        bl = _right_hand_side(shape[1], edges, host.pos)
+        b = np.array(bl)
+        res = (b - fact.M @ (fact.Mp @ b)).tolist()
+        # As numpy's max(|·|, initial=0): a NaN anywhere makes the test false.
+        worst = max(map(abs, res), default=0.0)
+        if worst > 1e-7 * t.unit * (1.0 + max(map(abs, bl), default=0.0) / t.unit) \
+                and not any(r != r for r in res + bl):
             return None
         # A system with one solution gives the same sample every time: one try is enough.
         self.unique = fact.unique
         rd = self._round(free, edges, fact, b)
-        return self._doomed(rd, fact, b, 2 * len(free)) if self.strict else rd
+        return self._doomed(rd, fact, b) if self.strict else rd
 
-    def _doomed(self, rd: "_Round", fact: "Factor", b: np.ndarray, nF2: int):
+    def _doomed(self, rd: "_Round", fact: "Factor", b: np.ndarray):
         """`rd`, or why no sample of it can pass. Lengths the system fixes whatever the target
         (their row of x = R t + c is constant): one outside its class's range dooms every
         sample. More generally a length is affine in the target, which ranges over a box
         (positions within 3σ of their centre, lengths within their draw range): when a
         length's range over that box misses its class, no sample can pass either."""
         tol = 1e-7 * self.host.t.unit
-        c = fact.scale[nF2:] * (fact.Mp[nF2:] @ b)
-        fr = fact.fixed_rows
-        if fr.any():
-            cf = c[fr]
-            if not np.all((cf > tol) & (rd.lo[fr] - tol <= cf) & (cf <= rd.hi[fr] + tol)):
+        c = (fact.scale_len * (fact.Mp_len @ b)).tolist()
+        for e in fact.fixed_idx:
+            if not (c[e] > tol and rd.lo_tol[e] <= c[e] <= rd.hi_tol[e]):
                 return Rejection.LENGTH_FIXED
         mid, half = self._target_box(rd)
-        centre = fact.R @ mid + c
-        spread = fact.absR @ half
-        top = centre + spread
-        if np.any((top <= tol) | (top < rd.lo - tol) | (centre - spread > rd.hi + tol)):
-            return Rejection.LENGTH_RANGE
+        centre = (fact.R @ mid).tolist()
+        spread = (fact.absR @ half).tolist()
+        for e, (ce, sp) in enumerate(zip(centre, spread)):
+            ce += c[e]
+            top = ce + sp
+            if top <= tol or top < rd.lo_tol[e] or ce - sp > rd.hi_tol[e]:
+                return Rejection.LENGTH_RANGE
         return rd
 
     def _target_box(self, rd: "_Round") -> tuple[np.ndarray, np.ndarray]:
         """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
-        nP = len(rd.base)
-        mid = np.empty(nP + len(rd.known))
-        half = np.zeros_like(mid)
-        pos = rd.base.copy()
         cx, cy = self._box_centre
-        pos[0::2][rd.aimless[0::2]] = cx
-        pos[1::2][rd.aimless[1::2]] = cy
-        mid[:nP] = pos
-        half[:nP][rd.new] = 1.5 * self.scale
+        u = 1.5 * self.scale
+        mid = [((cy if k & 1 else cx) if p != p else p) for k, p in enumerate(rd.base)]
+        half = [u if n else 0.0 for n in rd.new]
         a = rd.ranges(SHRINK ** (self.J - 1))[0]
         bb = rd.ranges(1.0)[1]
-        mid[nP:] = np.where(rd.drawn, 0.5 * (a + bb), rd.known)
-        half[nP:] = np.where(rd.drawn, 0.5 * (bb - a), 0.0)
-        return mid, half
+        for e, kn in enumerate(rd.known):
+            drawn = kn != kn
+            mid.append(0.5 * (a[e] + bb[e]) if drawn else kn)
+            half.append(0.5 * (bb[e] - a[e]) if drawn else 0.0)
+        return np.array(mid), np.array(half)
 
     def _draw_centre(self, lab: int) -> float:
         """Around what length a new edge of label `lab` is drawn: its typical length in the
@@ -313,53 +314,53 @@ class Solver:
         return self.stretch * ty if ty == ty else self.scale
 
     def _round(self, free, edges, fact: "Factor", b: np.ndarray) -> "_Round":
-        """What stays the same for every sample of a round, as arrays."""
+        """What stays the same for every sample of a round. Plain lists: they hold a few
+        dozen numbers, where a numpy call costs more than the loop."""
         host, t = self.host, self.host.t
-        nF = len(free)
-        base = np.full(2 * nF, np.nan)       # old vertices: where they are; new: their aim
-        new = np.zeros(2 * nF, dtype=bool)
-        for k, v in enumerate(free):
+        nan = math.nan
+        base, new = [], []      # old vertices: where they are; new: their aim (nan: none)
+        for v in free:
             p = host.pos.get(v)
-            if p is None:
-                new[2 * k:2 * k + 2] = True
+            fresh = p is None
+            if fresh:
                 p = self.aim.get(v)
-            if p is not None:
-                base[2 * k], base[2 * k + 1] = p
-        known = np.full(len(edges), np.nan)  # fixed lengths, and lengths of existing edges
-        lo, hi = np.empty(len(edges)), np.empty(len(edges))
-        centre = np.empty(len(edges))
-        tiles = []
+            base.extend((nan, nan) if p is None else p)
+            new.extend((fresh, fresh))
+        known = []              # fixed lengths, and lengths of existing edges (nan: drawn)
+        lo, hi, centre, tiles = [], [], [], []
         for e, (v, i, w, j, d, lab) in enumerate(edges):
-            lo[e], hi[e], fixed, tile = t.lengths[lab]
-            centre[e] = self._draw_centre(lab)
+            l, h, fixed, tile = t.lengths[lab]
+            lo.append(l)
+            hi.append(h)
+            centre.append(self._draw_centre(lab))
             if fixed is not None:
-                known[e] = fixed
+                known.append(fixed)
             elif v in host.prim and host.link[v][i] == (w, j):
                 pv, pw = host.pos[v], host.pos[w]
-                known[e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
+                known.append(d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1]))
+            else:
+                known.append(nan)
             if tile and fixed is None:
                 tiles.append((e, tile))
         context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
         tol = 1e-7 * t.unit
-        return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, np.isnan(base),
-                      known, np.isnan(known), lo, hi, centre, tiles, *context,
-                      lo - tol, hi + tol)
+        return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi, centre,
+                      tiles, *context, [x - tol for x in lo], [x + tol for x in hi])
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
-        nP = len(rd.base)
-        x = np.empty(nP + len(rd.known))
-        noise = rng.normal(0.0, 0.5 * self.scale * f, size=nP)
+        noise = rng.normal(0.0, 0.5 * self.scale * f, size=len(rd.base)).tolist()
         cx, cy = self.center()          # asked every sample: a floating part's draws a place
-        pos = rd.base.copy()
-        if rd.any_aimless:
-            pos[0::2][rd.aimless[0::2]] = cx
-            pos[1::2][rd.aimless[1::2]] = cy
-        x[:nP] = np.where(rd.new, pos + noise, pos)
-        draws = rng.random(len(rd.known))
+        x = []
+        for k, p in enumerate(rd.base):
+            if p != p:                  # no aim: the change's centre
+                p = cy if k & 1 else cx
+            x.append(p + noise[k] if rd.new[k] else p)
+        draws = rng.random(len(rd.known)).tolist()
         a, _, width = rd.ranges(f)
-        x[nP:] = np.where(rd.drawn, a + width * draws, rd.known)
-        return x
+        for e, kn in enumerate(rd.known):
+            x.append(a[e] + width[e] * draws[e] if kn != kn else kn)
+        return np.array(x)
 
     def _sample(self, free, rd: "_Round", f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
@@ -371,14 +372,17 @@ class Solver:
             if x is None:
                 self._fail(Rejection.TILES)
                 return None
-        s = x[2 * nF:]
+        xs = x.tolist()
         tol = 1e-7 * t.unit
-        ok = (s > tol) & (rd.lo_tol <= s) & (s <= rd.hi_tol) if self.strict else s > tol
-        if not ok.all():
+        lengths = xs[2 * nF:]
+        if self.strict:
+            ok = all(s > tol and lt <= s <= ht for s, lt, ht in zip(lengths, rd.lo_tol, rd.hi_tol))
+        else:
+            ok = all(s > tol for s in lengths)
+        if not ok:
             self._fail(Rejection.EDGE_LENGTH)
             return None
-        xy = x[:2 * nF].tolist()
-        pos = {v: (xy[2 * k], xy[2 * k + 1]) for k, v in enumerate(free)}
+        pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
         # every other vertex must be inside it.
@@ -470,50 +474,45 @@ class Solver:
 @dataclass
 class _Round:
     """A round's system (its edges, matrix, right-hand side, column scales, pseudo-inverse)
-    and constant arrays: free vertices' base positions (old: where they are, new: their aim),
-    which are new and which have no aim (the change's centre, per sample); edge lengths known
-    in advance (fixed, or kept), which are drawn instead, their class bounds, and the tiled
-    edges; what the crossing tests leave out. Draw ranges and the tile-pinned system are
-    made once, when first needed."""
+    and constants: free vertices' base coordinates (old: where they are, new: their aim, nan:
+    no aim, the change's centre per sample), which coordinates are new; edge lengths known in
+    advance (fixed, or kept; nan: drawn), their class bounds, where drawn ones are centred,
+    the tiled edges; what the crossing tests leave out. Draw ranges and the tile-pinned
+    system are made once, when first needed."""
 
     edges: list
     A: np.ndarray
     b: np.ndarray
     scale: np.ndarray
     Mp: np.ndarray
-    base: np.ndarray
-    new: np.ndarray
-    aimless: np.ndarray
-    known: np.ndarray
-    drawn: np.ndarray
-    lo: np.ndarray
-    hi: np.ndarray
-    centre: np.ndarray       # where drawn lengths are centred
+    base: list
+    new: list
+    known: list
+    lo: list
+    hi: list
+    centre: list
     tiles: list
     gone: frozenset          # what the crossing tests leave out (_planar_context)
     ignore: frozenset
-    lo_tol: np.ndarray       # the class bounds widened by the tolerance
-    hi_tol: np.ndarray
+    lo_tol: list             # the class bounds widened by the tolerance
+    hi_tol: list
     _ranges: dict = field(default_factory=dict)
     _pinned: tuple | None = None
 
-    def __post_init__(self):
-        self.any_aimless = bool(self.aimless.any())
-
-    def ranges(self, f: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def ranges(self, f: float) -> tuple[list, list, list]:
         """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
         width). Within (1 ± SPREAD)·centre·f, inside the class's range, or the whole class
         when that misses it; when a shrunk range falls below the class, its shortest length."""
         r = self._ranges.get(f)
         if r is None:
-            a = np.maximum(self.lo, (1.0 - SPREAD) * self.centre * f)
-            bb = np.minimum(self.hi, (1.0 + SPREAD) * self.centre * f)
-            missed = a > bb
-            whole = missed if f == 1.0 else missed & (self.hi < a)
-            short = missed & ~whole
-            a = np.where(missed, self.lo, a)
-            bb = np.where(whole, self.hi, np.where(short, self.lo, bb))
-            r = self._ranges[f] = (a, bb, bb - a)
+            los, his = [], []
+            for lo, hi, c in zip(self.lo, self.hi, self.centre):
+                a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
+                if a > bb:
+                    a, bb = (lo, hi) if f == 1.0 or hi < a else (lo, lo)
+                los.append(a)
+                his.append(bb)
+            r = self._ranges[f] = (los, his, [bb - a for a, bb in zip(los, his)])
         return r
 
     def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:
@@ -538,9 +537,11 @@ class Factor:
     M: np.ndarray
     Mp: np.ndarray
     R: np.ndarray
-    fixed_rows: np.ndarray
+    fixed_idx: list          # the lengths that no target moves
     unique: bool
     absR: np.ndarray
+    Mp_len: np.ndarray       # the rows of Mp and of the scales for the lengths
+    scale_len: np.ndarray
 
 
 class SystemCache:
@@ -584,25 +585,27 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     Mp = np.linalg.pinv(M, rcond=1e-10)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
     R = P[2 * nF:]
-    return Factor(A, scale, M, Mp, R, np.abs(R).max(axis=1, initial=0.0) < 1e-9,
-                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R))
+    fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
+    return Factor(A, scale, M, Mp, R, np.flatnonzero(fixed_rows).tolist(),
+                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R), Mp[2 * nF:],
+                  scale[2 * nF:])
 
 
-def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
+def _right_hand_side(shape_edges, edges, pos) -> list[float]:
     """b: the fixed ends' positions, then the fixed lengths."""
-    nE = len(edges)
-    fixed = [f for _, _, _, f, _ in shape_edges if f is not None]
-    b = np.zeros(2 * nE + len(fixed))
-    for e, ((iv, iw, _, _, _), (v, _, w, _, _, _)) in enumerate(zip(shape_edges, edges)):
+    b = []
+    for (iv, iw, _, _, _), (v, _, w, _, _, _) in zip(shape_edges, edges):
+        bx = by = 0.0
         if iw < 0:
             pw = pos[w]
-            b[2 * e] -= pw[0]
-            b[2 * e + 1] -= pw[1]
+            bx -= pw[0]
+            by -= pw[1]
         if iv < 0:
             pv = pos[v]
-            b[2 * e] += pv[0]
-            b[2 * e + 1] += pv[1]
-    b[2 * nE:] = fixed
+            bx += pv[0]
+            by += pv[1]
+        b += (bx, by)
+    b.extend(f for _, _, _, f, _ in shape_edges if f is not None)
     return b
 
 
