@@ -38,7 +38,7 @@ from grammar_lang.algorithms.components import DisjointSet
 from ..engine.host import Host, Point
 from ..engine.rejections import Rejection
 from ..engine.rewrite import Change
-from .spatial import seg_near
+from .spatial import seg_distance, seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
@@ -447,19 +447,24 @@ class Solver:
         for v, _, w, _, _, _ in edges:
             a, c = pos.get(v), pos.get(w)
             segs.append((v, w, hpos[v] if a is None else a, hpos[w] if c is None else c))
-        # Edges: no crossing or touching except at a shared end.
+        # Edges: no crossing or touching except at a shared end. The boxes are compared here,
+        # in seg_near's own terms, since most candidates are far.
         for k, (v, w, a, c) in enumerate(segs):
-            ax, ay, cx, cy = a[0], a[1], c[0], c[1]
-            near = grid.segments_near((ax if ax < cx else cx) - clr, (ay if ay < cy else cy) - clr,
-                                      (ax if ax > cx else cx) + clr, (ay if ay > cy else cy) + clr)
-            for key in near:
+            lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
+            ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
+            for key in grid.segments_near(lx - clr, ly - clr, hx + clr, hy + clr):
                 if key in ignore:
                     continue
                 x = key[0]
                 y = link[x][key[1]][0]
                 if x == v or x == w or y == v or y == w:
                     continue
-                if seg_near(a, c, hpos[x], hpos[y], clr):
+                p, q = hpos[x], hpos[y]
+                qlx, qhx = (p[0], q[0]) if p[0] < q[0] else (q[0], p[0])
+                qly, qhy = (p[1], q[1]) if p[1] < q[1] else (q[1], p[1])
+                if lx - clr > qhx or qlx - clr > hx or ly - clr > qhy or qly - clr > hy:
+                    continue
+                if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
             for v2, w2, a2, c2 in segs[k + 1:]:

@@ -65,13 +65,19 @@ class Grid:
         return self._segs[sid]
 
     def segments_near(self, x0: float, y0: float, x1: float, y1: float) -> set:
-        """Ids of segments filed in any cell the box touches (a superset of those meeting it)."""
+        """Ids of segments filed in any cell the box touches (a superset of those meeting it).
+        The set may be the grid's own: read it, do not change it."""
         out: set = set()
-        cells = self._seg_cells
-        for k in self.box_cells(x0, y0, x1, y1):
-            s = cells.get(k)
-            if s:
-                out |= s
+        cells, c = self._seg_cells, self.cell
+        i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
+        j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
+        if i0 == i1 and j0 == j1:           # the usual case: one cell, no copy needed
+            return cells.get((i0, j0), out)
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                s = cells.get((i, j))
+                if s:
+                    out |= s
         return out
 
     # --- points -----------------------------------------------------------------------------
