@@ -112,14 +112,17 @@ class Grid:
                 del d[key]
                 self._box = None          # a column or row emptied: the bounds may shrink
 
-    def points_near(self, x0: float, y0: float, x1: float, y1: float) -> list:
+    def points_near(self, x0: float, y0: float, x1: float, y1: float,
+                    ordered: bool = True) -> list:
+        """Ids of points filed in any cell the box touches, sorted unless `ordered` is False
+        (for callers that put them in an order of their own)."""
         out = []
         cells = self._pt_cells
         for k in self.box_cells(x0, y0, x1, y1):
             s = cells.get(k)
             if s:
                 out.extend(s)
-        return sorted(out)
+        return sorted(out) if ordered else out
 
     def point_within(self, p: Point, r: float, skip=()) -> bool:
         """Is a point not in `skip` closer than `r` to `p`? Exact; `r` about `fine` or less
