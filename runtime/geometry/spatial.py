@@ -13,6 +13,7 @@ the queries whose answer is a superset that depends on them (candidates, bounds)
 
 from __future__ import annotations
 
+import bisect
 import math
 from typing import Hashable, Iterable
 
@@ -27,6 +28,10 @@ class Grid:
         self.fine = float(fine or cell)
         self._fine_cells: dict[tuple[int, int], list] = {}
         self._seg_cells: dict[tuple[int, int], set] = {}
+        # Per row of cells, the sorted columns whose cell holds a segment: a ray cast to the
+        # left jumps over empty cells instead of stepping through each (a sparse drawing is
+        # mostly empty cells, and a ray can cross all of its width).
+        self._seg_cols: dict[int, list[int]] = {}
         self._pt_cells: dict[tuple[int, int], set] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
         self._pts: dict[Hashable, Point] = {}
@@ -50,8 +55,13 @@ class Grid:
     # --- segments ---------------------------------------------------------------------------
     def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
         self._segs[sid] = (a, b)
+        cells = self._seg_cells
         for k in self.box_cells(a[0], a[1], b[0], b[1]):
-            self._seg_cells.setdefault(k, set()).add(sid)
+            cell = cells.get(k)
+            if cell is None:
+                cell = cells[k] = set()
+                bisect.insort(self._seg_cols.setdefault(k[1], []), k[0])
+            cell.add(sid)
 
     def remove_segment(self, sid: Hashable) -> None:
         a, b = self._segs.pop(sid)
@@ -60,6 +70,21 @@ class Grid:
             cell.discard(sid)
             if not cell:
                 del self._seg_cells[k]
+                cols = self._seg_cols[k[1]]
+                del cols[bisect.bisect_left(cols, k[0])]
+                if not cols:
+                    del self._seg_cols[k[1]]
+
+    def _next_column(self, col: int, rows) -> int | None:
+        """The largest column below `col` holding a segment in one of `rows`."""
+        best = None
+        for row in rows:
+            cols = self._seg_cols.get(row)
+            if cols:
+                k = bisect.bisect_left(cols, col)
+                if k and (best is None or cols[k - 1] > best):
+                    best = cols[k - 1]
+        return best
 
     def segment(self, sid: Hashable) -> tuple[Point, Point]:
         return self._segs[sid]
@@ -199,7 +224,14 @@ class Grid:
                         best = (x, lean, sid)
             if best is not None and best[0] >= col * c:
                 break
-            col -= 1
+            # Jump to the next column with a segment: the cells skipped are empty, and the
+            # stop test above would have held at the last of them if it holds anywhere there.
+            nxt = self._next_column(col, rows)
+            if nxt is None:
+                break
+            if nxt < col - 1 and best is not None and best[0] >= (nxt + 1) * c:
+                break
+            col = nxt
         return None if best is None else (best[2], best[0])
 
 
