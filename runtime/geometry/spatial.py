@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import bisect
 import math
-from typing import Hashable, Iterable
+from typing import Hashable
 
 Point = tuple[float, float]
 
@@ -44,13 +44,13 @@ class Grid:
     def key(self, p: Point) -> tuple[int, int]:
         return (math.floor(p[0] / self.cell), math.floor(p[1] / self.cell))
 
-    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> Iterable[tuple[int, int]]:
+    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> list[tuple[int, int]]:
         c = self.cell
         i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
         j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
-        for i in range(i0, i1 + 1):
-            for j in range(j0, j1 + 1):
-                yield (i, j)
+        if i0 == i1 and j0 == j1:        # the usual case for a point or a short edge
+            return [(i0, j0)]
+        return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
 
     # --- segments ---------------------------------------------------------------------------
     def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
