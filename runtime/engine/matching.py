@@ -174,18 +174,21 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         for h in _comp_candidates_any(host, placed, False):
             by_prim.setdefault(host.prim[h], []).append(h)
         lists = [(i, by_prim.get(p, ())) for p, i in pattern.wire_slots[wi]]
-    flat = [(h, i) for i, lst in lists for h in lst]
-    total = len(flat)
+    total = sum(len(lst) for _, lst in lists)
     if total == 0:
         return
     if placed:
         cx, cy = _centroid(host, placed)
         pos = host.pos
         flat = [(h, i) for _, h, i in sorted(
-            ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h, i) for h, i in flat)]
+            ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h, i) for i, lst in lists
+            for h in lst)]
     elif rng is not None:
-        start = int(rng.integers(total))
-        flat = flat[start:] + flat[:start]
+        # Every host edge of the label, from a random one on: walked in place, since listing
+        # them all would cost O(drawing) for a search that usually stops at the first.
+        flat = _rotated(lists, int(rng.integers(total)))
+    else:
+        flat = ((h, i) for i, lst in lists for h in lst)
     for h, i in flat:
         s1 = host.link[h][i]
         s0 = (h, i)
@@ -194,6 +197,19 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         if placed and not budget.spend():
             return
         yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng, budget)
+
+
+def _rotated(lists: list[tuple[int, list]], start: int) -> Iterator[tuple[int, int]]:
+    """The (vertex, slot) pairs of `lists` laid end to end, from position `start` round to
+    the one before it."""
+    ends, offset = [], 0
+    for i, lst in lists:
+        ends.append((i, lst, offset))
+        offset += len(lst)
+    for lo, hi in ((start, offset), (0, start)):
+        for i, lst, o in ends:
+            for k in range(max(lo - o, 0), min(hi - o, len(lst))):
+                yield lst[k], i
 
 
 def _centroid(host: Host, placed: dict) -> tuple[float, float]:
