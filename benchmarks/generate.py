@@ -1,16 +1,22 @@
 """Generation speed: applied rule steps per second, geometry included, as the drawing grows.
 
-For each example the grammar is compiled once (not timed), grown to each size in turn with the
-`size` cost, and then measured over a window of steps at that size, so the rows show whether
-the per-step time stays flat as the drawing grows.
+For each example and size the grammar is compiled (not timed) in a fresh process, grown with
+the `size` cost until the drawing holds that many vertices, and then measured over a window of
+steps at that size, so the rows show whether the per-step time stays flat as the drawing
+grows. Each process also reports its peak memory (`ru_maxrss`), once after compiling and once
+at the end, so the second minus the first is what the drawing and its indexes take.
 
-    .venv/bin/python benchmarks/generate.py                       # a few corpus examples
-    .venv/bin/python benchmarks/generate.py EXAMPLE.svg|.gg|.ggr --sizes 100,1000 --window 500
+    .venv/bin/python benchmarks/generate.py                       # the simple corpus grammars
+    .venv/bin/python benchmarks/generate.py EXAMPLE.svg|.gg|.ggr --sizes 1000,5000 --window 500
+    .venv/bin/python benchmarks/generate.py --profile 20000 curl.svg   # cProfile of the window
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import resource
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -28,46 +34,73 @@ from report.ggrun import compile_example  # noqa: E402
 from runtime.run_cmd import load_grammar  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus" / "examples"
-DEFAULT = ["square-filled.svg", "l.svg", "plus.svg", "h.svg", "branches.svg"]
+DEFAULT = ["square-filled.svg", "branches.svg", "curl.svg", "h-complex.svg"]
 
 
-def measure(path: str, sizes: list[int], window: int, seed: int) -> list[dict]:
+def peak_mib() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024      # KiB on Linux
+
+
+def measure(path: str, size: int, window: int, seed: int, profile: bool = False) -> dict:
+    """Grow one drawing to `size` vertices and time `window` applied steps there."""
     grammar = load_grammar(path, compile_example)
-    rows = []
-    engine = Engine(grammar, seed=seed)
-    for size in sizes:
-        engine.cost = SizeCost(size)
-        engine.run(10 * size)                    # grow (stops once `size` steps are applied)
-        while len(engine.host) < 0.9 * size:
-            before = len(engine.host)
-            engine.run(size)
-            if len(engine.host) <= before:
-                break
-        t0 = time.perf_counter()
-        s = engine.run(window)
-        dt = time.perf_counter() - t0
-        rows.append({"example": Path(path).name, "target": size, "vertices": len(engine.host),
-                     "applied": s.applied, "proposals": s.proposals,
-                     "steps_per_s": s.applied / dt if dt else 0.0,
-                     "ms_per_step": 1000 * dt / max(s.applied, 1), "stop": s.stop})
-    return rows
+    base = peak_mib()
+    engine = Engine(grammar, seed=seed, cost=SizeCost(size))
+    t0 = time.perf_counter()
+    grow = engine.run(20 * size, stop=lambda: len(engine.host) >= size)
+    grown = time.perf_counter() - t0
+    profiler = None
+    if profile:
+        import cProfile
+        profiler = cProfile.Profile()
+        profiler.enable()
+    t0 = time.perf_counter()
+    s = engine.run(window)
+    dt = time.perf_counter() - t0
+    if profiler is not None:
+        import pstats
+        profiler.disable()
+        pstats.Stats(profiler, stream=sys.stderr).sort_stats("tottime").print_stats(30)
+    return {"example": Path(path).name, "target": size, "vertices": len(engine.host),
+            "grow_steps": grow.applied, "grow_s": grown,
+            "applied": s.applied, "proposals": s.proposals,
+            "steps_per_s": s.applied / dt if dt else 0.0,
+            "ms_per_step": 1000 * dt / max(s.applied, 1), "stop": s.stop,
+            "base_mib": base, "peak_mib": peak_mib()}
+
+
+def in_fresh_process(path: str, size: int, window: int, seed: int) -> dict:
+    """`measure` in a new interpreter, so that its peak memory is this size's alone."""
+    out = subprocess.run([sys.executable, __file__, path, "--sizes", str(size), "--window",
+                          str(window), "--seed", str(seed), "--one"],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("examples", nargs="*", help="examples (.svg, .gg) or grammars (.ggr)")
-    ap.add_argument("--sizes", default="100,300,1000", help="drawing sizes, in vertices")
+    ap.add_argument("--sizes", default="1000,5000,20000", help="drawing sizes, in vertices")
     ap.add_argument("--window", type=int, default=500, help="steps measured at each size")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--profile", type=int, metavar="SIZE",
+                    help="profile the window at SIZE (cProfile, to stderr) in this process")
+    ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)  # a child's run
     args = ap.parse_args(argv)
     paths = args.examples or [str(CORPUS / n) for n in DEFAULT]
     sizes = [int(x) for x in args.sizes.split(",")]
-    print(f"{'example':<22}{'target':>7}{'vertices':>9}{'applied':>8}{'proposals':>10}"
-          f"{'steps/s':>9}{'ms/step':>9}")
+    if args.one or args.profile:
+        print(json.dumps(measure(paths[0], args.profile or sizes[0], args.window, args.seed,
+                                 profile=bool(args.profile))))
+        return 0
+    print(f"{'example':<20}{'target':>7}{'vertices':>9}{'grown in':>9}{'applied':>8}"
+          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'MiB base':>9}{'MiB peak':>9}")
     for p in paths:
-        for r in measure(p, sizes, args.window, args.seed):
-            print(f"{r['example']:<22}{r['target']:>7}{r['vertices']:>9}{r['applied']:>8}"
-                  f"{r['proposals']:>10}{r['steps_per_s']:>9.0f}{r['ms_per_step']:>9.2f}"
+        for size in sizes:
+            r = in_fresh_process(p, size, args.window, args.seed)
+            print(f"{r['example']:<20}{r['target']:>7}{r['vertices']:>9}{r['grow_s']:>8.1f}s"
+                  f"{r['applied']:>8}{r['proposals']:>10}{r['steps_per_s']:>9.0f}"
+                  f"{r['ms_per_step']:>9.2f}{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
                   + ("" if r["stop"].startswith("reached") else f"  ({r['stop']})"), flush=True)
     return 0
 

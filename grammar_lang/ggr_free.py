@@ -22,10 +22,10 @@ from .expr_functions import FUNCTIONS, EvalError
 from .expr_parse import ExprError, parse_expr
 from .free_rules import (DERIVED, KINDS, MATCH_CHOICES, SETTABLE_DERIVED, Assign, AttrDecl,
                          Condition, Daughter, FEdge, FFace, FSide, FVertex, Let, Production)
+from .source import MAX_COORDINATE
 
 PRODUCTION_KEYS = {"priority": "int", "weight": "float", "match": "name", "spatial": "bool"}
 DAUGHTER_KEYS = {"weight": "float"}
-MAX_COORDINATE = 1e12       # as everywhere in the toolchain: beyond this, not a drawing
 # Elements in one side of a production (matching recurses once per element, and the load
 # check for self-copies is a graph isomorphism), and in the start graph.
 MAX_SIDE = 100

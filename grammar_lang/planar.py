@@ -19,14 +19,14 @@ from . import limits
 from .diagnostics import Diagnostic, Span, UserError, error
 from .planar_faces import compute_faces, winding
 from .planar_noding import NodingError, TooManyCrossings, cluster, node
-from .source import DEFAULT_CLASS, ExampleGraph, ExampleSource, ExplicitEdge, Region, Stroke
+from .source import (DEFAULT_CLASS, MAX_COORDINATE, ExampleGraph, ExampleSource, ExplicitEdge,
+                     Region, Stroke)
 
 MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the bounding-box diagonal
 # Coordinates are written rounded to 9 decimals, so points nearer than this would become one
 # point on output while staying two vertices: the merge distance never goes below it.
 RESOLUTION = 1e-8
 MAX_DIAGNOSTICS = 20
-MAX_COORDINATE = 1e12     # beyond this, squared lengths lose every digit the geometry needs
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,9 @@ Point = tuple[float, float]
 
 EXTERIOR = "exterior"
 DEFAULT_CLASS = "0"
+# Beyond this, squared lengths lose every digit the geometry needs: not a drawing. Every front
+# end (SVG import, the shape model, free-form rules) refuses coordinates past it.
+MAX_COORDINATE = 1e12
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from defusedxml import sax as defused_sax
 from .diagnostics import Span, UserError, error
 from . import limits
 from .fileio import read_text
-from .source import DEFAULT_CLASS, EdgeClass, ExampleSource, Region, Stroke
+from .source import DEFAULT_CLASS, MAX_COORDINATE, EdgeClass, ExampleSource, Region, Stroke
 from .svg_colors import normalize_color
 from .svg_paths import (FLATTEN_HINT, IDENTITY, SvgValueError, apply, parse_length,
                         parse_path, parse_points, parse_transform)
@@ -328,6 +328,11 @@ class _Importer:
             raise self.fail(node, exc.message) from None
         if not rings:
             return  # SVG renders nothing for empty path data
+        # Refused here, where the shape is known, before any arithmetic on the coordinates
+        # (the area test below would overflow on them).
+        if any(abs(c) > MAX_COORDINATE for ring, _ in rings for pt in ring for c in pt):
+            raise self.fail(node, f"coordinates beyond ±{MAX_COORDINATE:g}",
+                            "scale the drawing down (in the editor, or with a transform)")
         fill = self.colour(node, style, "fill") if fillable else None
         if fill is not None and "fill" not in style and not any(_has_area(r) for r, _ in rings):
             fill = None  # SVG's implicit black fill of a flat polyline paints nothing

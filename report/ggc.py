@@ -14,8 +14,6 @@ from grammar_lang.cli_support import common_flags, run
 from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import atomic_write
 
-from .build import MAX_GALLERY
-
 
 def add_commands(sub) -> None:
     p = sub.add_parser("report", help="write one self-contained HTML page that shows the "
@@ -78,7 +76,7 @@ def run_draw(args) -> int:
 def run_report(args) -> int:
     from grammar_lang.png import check_size
 
-    from .build import gallery, load_subject
+    from .build import MAX_GALLERY, gallery, load_subject
     from .figures import Drafter
     from .page import Page
 

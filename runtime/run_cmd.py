@@ -15,11 +15,12 @@ from typing import TYPE_CHECKING, Callable
 from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import EXIT_FAILED, EXIT_INTERRUPTED
 from grammar_lang.diagnostics import Span, error
-from grammar_lang.rules import Grammar
 
 from . import interrupt
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:     # annotations only: `ggrun --version` must not load the model
+    from grammar_lang.rules import Grammar
+
     from .engine.generate import Summary
 
 DEFAULT_STEPS = 200

@@ -226,6 +226,26 @@ def test_diagnostics_point_at_the_element(body, message, line):
     assert d.span.file == "drawing.svg" and d.span.line == line and d.span.column >= 1
 
 
+@pytest.mark.parametrize("body", [
+    '<polyline points="0,0 1e200,1e200 3e200,-1e200"/>',          # the implicit fill's area test
+    '<polygon points="0,0 2e13,0 0,1" fill="red"/>',
+    '<path d="M 0 0 L 1 1 L 1e300 -1e300 Z"/>',
+    '<line x2="1" transform="scale(1e13)"/>',                       # huge only after the transform
+])
+def test_huge_coordinates_are_a_located_error_without_warnings(body):
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")              # a numpy overflow warning fails the test
+        d = fails(body).diagnostics[0]
+    assert "coordinates beyond" in d.message and "scale the drawing down" in d.hint
+    assert (d.span.file, d.span.line) == ("drawing.svg", 2)
+
+
+def test_coordinates_at_the_limit_are_read():
+    src = load('<polyline points="0,0 1e12,0 1e12,-1e12" fill="none"/>')
+    assert max(abs(c) for pt in src.paint[0].points for c in pt) == 1e12
+
+
 def test_gradient_fill_with_a_data_label_is_fine():
     src = load('<rect width="1" height="1" fill="url(#grad)" data-label="sky"/>')
     assert src.paint[0].label == "sky"

@@ -9,11 +9,10 @@ segments, as numpy arrays) to scipy's compiled `connected_components`.
 
 from __future__ import annotations
 
-from typing import Hashable, Iterable, Sequence, TypeVar
+from typing import TYPE_CHECKING, Hashable, Iterable, Sequence, TypeVar
 
-import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+if TYPE_CHECKING:
+    import numpy as np
 
 T = TypeVar("T", bound=Hashable)
 
@@ -84,6 +83,12 @@ def glued_parts(labels: Sequence[int], edges: Iterable[tuple[int, int, int, int]
 def component_labels(n: int, ends: np.ndarray) -> tuple[int, np.ndarray]:
     """How many connected components the graph on `n` vertices with the undirected edges of
     the (m, 2) array `ends` has, and each vertex's component number (scipy's numbering)."""
+    # Imported here, not at the top: the small-graph helpers above are on every command's
+    # start-up path (rule sides), and numpy + scipy.sparse cost 0.6 s to import.
+    import numpy as np
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     graph = coo_matrix((np.ones(len(ends)), (ends[:, 0], ends[:, 1])), shape=(n, n))
     count, labels = connected_components(graph, directed=False)

@@ -387,5 +387,6 @@ class Engine:
             pad = 0.05 * host.t.unit
             xs, ys = [p[0] for p in pts], [p[1] for p in pts]
             todo.update(host.grid.points_near(min(xs) - pad, min(ys) - pad,
-                                              max(xs) + pad, max(ys) + pad))
-        return all(host.face_ok(v) for v in sorted(todo) if v in host.prim)
+                                              max(xs) + pad, max(ys) + pad, False))
+        # Each vertex's test is independent of the others: the order does not matter.
+        return all(host.face_ok(v) for v in todo if v in host.prim)

@@ -47,7 +47,7 @@ class Host:
         self.prim_count = np.zeros(len(self.t.rings), dtype=np.int64)   # len(by_prim[p])
         self._where: dict[int, int] = {}
         self.next_id = 0
-        self.grid = Grid(grid_cell(self.t))
+        self.grid = Grid(grid_cell(self.t), fine=2 * self.t.clearance)
         self.label_count = [0] * len(self.t.label_names)
         self.n_edges = 0
         self.n_open = 0

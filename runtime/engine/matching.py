@@ -96,8 +96,11 @@ def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
     prim = pattern.side.vertices[comp.vertices[k]]
     if near is None:
         return host.by_prim[prim]
-    # Later components of a splice: only vertices near the part already matched.
-    return [h for h in _comp_candidates_any(host, near) if host.prim[h] == prim]
+    # Later components of a splice: only vertices near the part already matched, nearest
+    # first (the order is by distance and id, so the grid's order does not matter).
+    hp = host.prim
+    return _nearest_first(host, [h for h in _comp_candidates_any(host, near, False)
+                                 if hp[h] == prim], near)
 
 
 class _Budget:
@@ -132,9 +135,10 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
     if n == 0:
         return
     if ci:
-        # Later parts of a splice: nearest first, since a splice joins parts facing each other
-        # across one face, and the nearest candidates are the likeliest to see the first part.
-        order = _nearest_first(host, cands, vmap)
+        # Later parts of a splice: nearest first (as _comp_candidates gives them), since a
+        # splice joins parts facing each other across one face, and the nearest candidates
+        # are the likeliest to see the first part.
+        order = cands
     elif rng is None:
         order = sorted(cands)
     else:
@@ -164,19 +168,27 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
     placed = dict(vmap)
     placed.update({("w", k): s[0] for k, pair in enumerate(wires) for s in pair})
     if placed:
-        # Beside parts already matched, look for the wire nearby only.
-        near = set(_comp_candidates_any(host, placed))
-        lists = [(i, [h for h in lst if h in near]) for i, lst in lists]
-    flat = [(h, i) for i, lst in lists for h in lst]
-    total = len(flat)
+        # Beside parts already matched, look for the wire nearby only: the vertices the grid
+        # finds there, by primitive (not a scan of the primitive's whole index).
+        by_prim: dict[int, list[int]] = {}
+        for h in _comp_candidates_any(host, placed, False):
+            by_prim.setdefault(host.prim[h], []).append(h)
+        lists = [(i, by_prim.get(p, ())) for p, i in pattern.wire_slots[wi]]
+    total = sum(len(lst) for _, lst in lists)
     if total == 0:
         return
     if placed:
+        cx, cy = _centroid(host, placed)
+        pos = host.pos
         flat = [(h, i) for _, h, i in sorted(
-            (_d2(host, h, placed), h, i) for h, i in flat)]
+            ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h, i) for i, lst in lists
+            for h in lst)]
     elif rng is not None:
-        start = int(rng.integers(total))
-        flat = flat[start:] + flat[:start]
+        # Every host edge of the label, from a random one on: walked in place, since listing
+        # them all would cost O(drawing) for a search that usually stops at the first.
+        flat = _rotated(lists, int(rng.integers(total)))
+    else:
+        flat = ((h, i) for i, lst in lists for h in lst)
     for h, i in flat:
         s1 = host.link[h][i]
         s0 = (h, i)
@@ -187,25 +199,36 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng, budget)
 
 
-def _d2(host: Host, h: int, placed: dict) -> float:
+def _rotated(lists: list[tuple[int, list]], start: int) -> Iterator[tuple[int, int]]:
+    """The (vertex, slot) pairs of `lists` laid end to end, from position `start` round to
+    the one before it."""
+    ends, offset = [], 0
+    for i, lst in lists:
+        ends.append((i, lst, offset))
+        offset += len(lst)
+    for lo, hi in ((start, offset), (0, start)):
+        for i, lst, o in ends:
+            for k in range(max(lo - o, 0), min(hi - o, len(lst))):
+                yield lst[k], i
+
+
+def _centroid(host: Host, placed: dict) -> tuple[float, float]:
     cx = sum(host.pos[v][0] for v in placed.values()) / len(placed)
     cy = sum(host.pos[v][1] for v in placed.values()) / len(placed)
-    p = host.pos[h]
-    return (p[0] - cx) ** 2 + (p[1] - cy) ** 2
+    return cx, cy
 
 
 def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
-    cx = sum(host.pos[v][0] for v in placed.values()) / len(placed)
-    cy = sum(host.pos[v][1] for v in placed.values()) / len(placed)
+    cx, cy = _centroid(host, placed)
     pos = host.pos
     return sorted(cands, key=lambda h: ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h))
 
 
-def _comp_candidates_any(host: Host, near: dict) -> list[int]:
+def _comp_candidates_any(host: Host, near: dict, ordered: bool = True) -> list[int]:
     xs = [host.pos[h][0] for h in near.values()]
     ys = [host.pos[h][1] for h in near.values()]
     r = SPLICE_RADIUS * host.t.unit
-    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r)
+    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, ordered)
 
 
 def _match(pattern: Pattern, found) -> Match:

@@ -147,11 +147,15 @@ class Schedule:
         # Weighted sampling without replacement in one go: sorting by u^(1/w) draws the same
         # order as repeated weighted draws (Efraimidis & Spirakis). Moves needing a primitive
         # the host does not have are left out without a search.
-        keys = rng.random(len(level.weights)) ** level.inverse_weights
+        # Sorted in Python: a level holds a few dozen moves, and Python's sort is stable as
+        # numpy's "stable" argsort of -keys is, so ties keep the move order either way.
+        keys = (rng.random(len(level.weights)) ** level.inverse_weights).tolist()
         absent = host.prim_count == 0
+        ks = range(len(keys))
         if absent.any():
-            keys[level.requires[:, absent].any(axis=1)] = -1.0
-        return [int(k) for k in np.argsort(-keys, kind="stable") if keys[k] >= 0]
+            blocked = level.requires[:, absent].any(axis=1).tolist()
+            ks = [k for k in ks if not blocked[k]]
+        return sorted(ks, key=keys.__getitem__, reverse=True)
 
     def _draw(self, level: Level, ks: list[int], host: Host, rng: np.random.Generator,
               probes: int | None):

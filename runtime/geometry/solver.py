@@ -27,7 +27,8 @@ tests, so a step's cost does not grow with the drawing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import statistics
+from dataclasses import dataclass, field
 from typing import Callable, Iterator
 
 import numpy as np
@@ -36,7 +37,7 @@ from grammar_lang.algorithms.components import DisjointSet
 
 from .change import Change, HostView
 from .rejections import Rejection
-from .spatial import Point, seg_near
+from .spatial import Point, seg_distance, seg_near
 
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
@@ -86,6 +87,7 @@ class Solver:
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         self.clearance = host.t.clearance
+        self._adjacency: dict[int, list] = {}
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.unique = False
@@ -118,8 +120,10 @@ class Solver:
             if lab in host.side_labels:
                 continue     # a frame's side is as long as the frame, not a local scale
             seen(v, host.link[v][i][0], lab)
-        scale = float(np.median(lengths)) if lengths else host.t.unit
-        return scale, (float(np.median(ratios)) if ratios else 1.0)
+        # statistics.median: the same value as numpy's for a handful of floats, at a tenth of
+        # the cost (this runs once per proposal).
+        scale = statistics.median(lengths) if lengths else host.t.unit
+        return scale, (statistics.median(ratios) if ratios else 1.0)
 
     def _aims(self) -> dict[int, Point]:
         """Where each new vertex is aimed: beside the old vertices it is glued to, else beside
@@ -155,7 +159,12 @@ class Solver:
         return self.host.prim[v] if p is None else p
 
     def adjacency(self, v: int):
-        return self.change.adjacency(self.host, v, self.prim(v))
+        # Kept for the solver's life: the host is back as it was whenever a round is built
+        # (a placement that fails its face test is undone before the next one is asked for).
+        adj = self._adjacency.get(v)
+        if adj is None:
+            adj = self._adjacency[v] = self.change.adjacency(self.host, v, self.prim(v))
+        return adj
 
     def _fail(self, why: Rejection) -> None:
         self.failures[why] = self.failures.get(why, 0) + 1
@@ -168,16 +177,15 @@ class Solver:
             yield Placement({})
             return
         for rnd in range(1, self.I + 1):
-            system = self._system(free)
-            if system is None:
+            rd = self._system(free)
+            if rd is None:
                 self._fail(Rejection.OVER_CONSTRAINED)
-            elif system[0] is None:
-                self._fail(system[1])
+            elif isinstance(rd, Rejection):
+                self._fail(rd)
             else:
                 f = 1.0
-                rd = self._round(free, system[0])
                 for _ in range(1 if self.unique else self.J):
-                    pos = self._sample(free, *system, rd, f)
+                    pos = self._sample(free, rd, f)
                     if pos is None:
                         f = f * SHRINK if self.last_failure in CROWDED \
                             else min(self.f_max, f / SHRINK)
@@ -214,9 +222,9 @@ class Solver:
         return part
 
     # --- the linear system ------------------------------------------------------------------
-    def _system(self, free: list[int]):
+    def _edges(self, free: list[int]) -> list[tuple]:
+        """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
-        idx = {v: k for k, v in enumerate(free)}
         edges, seen = [], set()
         for v in free:
             pv = self.prim(v)
@@ -226,10 +234,19 @@ class Solver:
                     continue
                 seen.add(key)
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        fs = set(free)
         for (v, i), (w, j) in self.bridges:
-            if v not in idx and w not in idx:
+            if v not in fs and w not in fs:
                 pv = host.prim[v]
                 edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+        return edges
+
+    def _system(self, free: list[int]) -> "_Round | Rejection | None":
+        """The round's system and constants; None when it is inconsistent, the reason when
+        no sample of it can pass."""
+        host, t = self.host, self.host.t
+        edges = self._edges(free)
+        idx = {v: k for k, v in enumerate(free)}
         shape = (tuple(OLD if v in host.prim else GLUED if v in self.glued else LOOSE
                        for v in free),
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
@@ -238,66 +255,53 @@ class Solver:
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
-        b = _right_hand_side(shape[1], edges, host.pos)
-        M, Mp = fact.M, fact.Mp
-        res = b - M @ (Mp @ b)
-        if float(np.abs(res).max(initial=0.0)) > 1e-7 * t.unit * (1.0 + float(np.abs(b).max(initial=0.0)) / t.unit):
+        bl = _right_hand_side(shape[1], edges, host.pos)
+        b = np.array(bl)
+        res = (b - fact.M @ (fact.Mp @ b)).tolist()
+        # As numpy's max(|·|, initial=0): a NaN anywhere makes the test false.
+        worst = max(map(abs, res), default=0.0)
+        if worst > 1e-7 * t.unit * (1.0 + max(map(abs, bl), default=0.0) / t.unit) \
+                and not any(r != r for r in res + bl):
             return None
-        # Lengths the system fixes whatever the target (their row of x = R t + c is constant):
-        # one outside its class's range dooms every sample, so the round is skipped.
-        nF2 = 2 * len(free)
-        A, scale, R, fixed_rows = fact.A, fact.scale, fact.R, fact.fixed_rows
-        c = scale[nF2:] * (Mp[nF2:] @ b)
         # A system with one solution gives the same sample every time: one try is enough.
         self.unique = fact.unique
-        if not self.strict:
-            return edges, A, b, scale, Mp
-        tol = 1e-7 * t.unit
-        for e in np.flatnonzero(fixed_rows):
-            lo, hi, _, _ = t.lengths[edges[e][5]]
-            if not (c[e] > tol and lo - tol <= c[e] <= hi + tol):
-                return None, Rejection.LENGTH_FIXED
-        # More generally a length is affine in the target, which ranges over a box (positions
-        # within 3σ of their centre, lengths within their draw range): when a length's range
-        # over that box misses its class, no sample can pass and the round is skipped.
-        mid, half = self._target_box(free, edges)
-        centre = R @ mid + c
-        spread = np.abs(R) @ half
-        for e, (*_, lab) in enumerate(edges):
-            lo, hi, _, _ = t.lengths[lab]
-            if centre[e] + spread[e] <= tol or centre[e] + spread[e] < lo - tol \
-                    or centre[e] - spread[e] > hi + tol:
-                return None, Rejection.LENGTH_RANGE
-        return edges, A, b, scale, Mp
+        rd = self._round(free, edges, fact, b)
+        return self._doomed(rd, fact, b) if self.strict else rd
 
-    def _target_box(self, free, edges) -> tuple[np.ndarray, np.ndarray]:
+    def _doomed(self, rd: "_Round", fact: "Factor", b: np.ndarray):
+        """`rd`, or why no sample of it can pass. Lengths the system fixes whatever the target
+        (their row of x = R t + c is constant): one outside its class's range dooms every
+        sample. More generally a length is affine in the target, which ranges over a box
+        (positions within 3σ of their centre, lengths within their draw range): when a
+        length's range over that box misses its class, no sample can pass either."""
+        tol = 1e-7 * self.host.t.unit
+        c = (fact.scale_len * (fact.Mp_len @ b)).tolist()
+        for e in fact.fixed_idx:
+            if not (c[e] > tol and rd.lo_tol[e] <= c[e] <= rd.hi_tol[e]):
+                return Rejection.LENGTH_FIXED
+        mid, half = self._target_box(rd)
+        centre = (fact.R @ mid).tolist()
+        spread = (fact.absR @ half).tolist()
+        for e, (ce, sp) in enumerate(zip(centre, spread)):
+            ce += c[e]
+            top = ce + sp
+            if top <= tol or top < rd.lo_tol[e] or ce - sp > rd.hi_tol[e]:
+                return Rejection.LENGTH_RANGE
+        return rd
+
+    def _target_box(self, rd: "_Round") -> tuple[np.ndarray, np.ndarray]:
         """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
-        host, t = self.host, self.host.t
-        u = self.scale
-        nF = len(free)
-        mid = np.zeros(2 * nF + len(edges))
-        half = np.zeros_like(mid)
         cx, cy = self._box_centre
-        for k, v in enumerate(free):
-            p = host.pos.get(v)
-            if p is None:
-                mid[2 * k], mid[2 * k + 1] = self.aim.get(v, (cx, cy))
-                half[2 * k] = half[2 * k + 1] = 1.5 * u
-            else:
-                mid[2 * k], mid[2 * k + 1] = p
-        for e, (v, i, w, j, d, lab) in enumerate(edges):
-            lo, hi, fixed, tile = t.lengths[lab]
-            if fixed is not None:
-                mid[2 * nF + e] = fixed
-            elif v in host.prim and host.link[v][i] == (w, j):
-                pv, pw = host.pos[v], host.pos[w]
-                mid[2 * nF + e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
-            else:
-                c = self._draw_centre(lab)
-                a = _draw_range(lo, hi, c, SHRINK ** (self.J - 1))[0]
-                bb = _draw_range(lo, hi, c, 1.0)[1]
-                mid[2 * nF + e], half[2 * nF + e] = 0.5 * (a + bb), 0.5 * (bb - a)
-        return mid, half
+        u = 1.5 * self.scale
+        mid = [((cy if k & 1 else cx) if p != p else p) for k, p in enumerate(rd.base)]
+        half = [u if n else 0.0 for n in rd.new]
+        a = rd.ranges(SHRINK ** (self.J - 1))[0]
+        bb = rd.ranges(1.0)[1]
+        for e, kn in enumerate(rd.known):
+            drawn = kn != kn
+            mid.append(0.5 * (a[e] + bb[e]) if drawn else kn)
+            half.append(0.5 * (bb[e] - a[e]) if drawn else 0.0)
+        return np.array(mid), np.array(half)
 
     def _draw_centre(self, lab: int) -> float:
         """Around what length a new edge of label `lab` is drawn: its typical length in the
@@ -308,72 +312,76 @@ class Solver:
         ty = typical[lab] if typical and lab not in self.host.side_labels else math.nan
         return self.stretch * ty if ty == ty else self.scale
 
-    def _round(self, free, edges) -> "_Round":
-        """What stays the same for every sample of a round, as arrays."""
+    def _round(self, free, edges, fact: "Factor", b: np.ndarray) -> "_Round":
+        """What stays the same for every sample of a round. Plain lists: they hold a few
+        dozen numbers, where a numpy call costs more than the loop."""
         host, t = self.host, self.host.t
-        nF = len(free)
-        base = np.full(2 * nF, np.nan)       # old vertices: where they are; new: their aim
-        new = np.zeros(2 * nF, dtype=bool)
-        for k, v in enumerate(free):
+        nan = math.nan
+        base, new = [], []      # old vertices: where they are; new: their aim (nan: none)
+        for v in free:
             p = host.pos.get(v)
-            if p is None:
-                new[2 * k:2 * k + 2] = True
+            fresh = p is None
+            if fresh:
                 p = self.aim.get(v)
-            if p is not None:
-                base[2 * k], base[2 * k + 1] = p
-        known = np.full(len(edges), np.nan)  # fixed lengths, and lengths of existing edges
-        lo, hi = np.empty(len(edges)), np.empty(len(edges))
-        centre = np.empty(len(edges))
-        tiles = []
+            base.extend((nan, nan) if p is None else p)
+            new.extend((fresh, fresh))
+        known = []              # fixed lengths, and lengths of existing edges (nan: drawn)
+        lo, hi, centre, tiles = [], [], [], []
         for e, (v, i, w, j, d, lab) in enumerate(edges):
-            lo[e], hi[e], fixed, tile = t.lengths[lab]
-            centre[e] = self._draw_centre(lab)
+            l, h, fixed, tile = t.lengths[lab]
+            lo.append(l)
+            hi.append(h)
+            centre.append(self._draw_centre(lab))
             if fixed is not None:
-                known[e] = fixed
+                known.append(fixed)
             elif v in host.prim and host.link[v][i] == (w, j):
                 pv, pw = host.pos[v], host.pos[w]
-                known[e] = d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
+                known.append(d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1]))
+            else:
+                known.append(nan)
             if tile and fixed is None:
                 tiles.append((e, tile))
-        return _Round(base, new, np.isnan(base), known, np.isnan(known), lo, hi, centre, tiles)
+        context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
+        tol = 1e-7 * t.unit
+        return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi, centre,
+                      tiles, *context, [x - tol for x in lo], [x + tol for x in hi])
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
-        nP = len(rd.base)
-        x = np.empty(nP + len(rd.known))
-        noise = rng.normal(0.0, 0.5 * self.scale * f, size=nP)
-        cx, cy = self.center()
-        pos = rd.base.copy()
-        pos[0::2][rd.aimless[0::2]] = cx
-        pos[1::2][rd.aimless[1::2]] = cy
-        x[:nP] = np.where(rd.new, pos + noise, pos)
-        draws = rng.random(len(rd.known))
-        a = np.maximum(rd.lo, (1.0 - SPREAD) * rd.centre * f)
-        bb = np.minimum(rd.hi, (1.0 + SPREAD) * rd.centre * f)
-        missed = a > bb        # as in _draw_range: the whole class, or its shortest length
-        whole = missed if f == 1.0 else missed & (rd.hi < a)
-        short = missed & ~whole
-        a, bb = np.where(missed, rd.lo, a), np.where(whole, rd.hi, np.where(short, rd.lo, bb))
-        x[nP:] = np.where(rd.drawn, a + (bb - a) * draws, rd.known)
-        return x
+        noise = rng.normal(0.0, 0.5 * self.scale * f, size=len(rd.base)).tolist()
+        cx, cy = self.center()          # asked every sample: a floating part's draws a place
+        x = []
+        for k, p in enumerate(rd.base):
+            if p != p:                  # no aim: the change's centre
+                p = cy if k & 1 else cx
+            x.append(p + noise[k] if rd.new[k] else p)
+        draws = rng.random(len(rd.known)).tolist()
+        a, _, width = rd.ranges(f)
+        for e, kn in enumerate(rd.known):
+            x.append(a[e] + width[e] * draws[e] if kn != kn else kn)
+        return np.array(x)
 
-    def _sample(self, free, edges, A, b, scale, Mp, rd, f: float = 1.0) -> dict[int, Point] | None:
+    def _sample(self, free, rd: "_Round", f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
         target = self._targets(rd, f)
-        x = target + scale * (Mp @ (b - A @ target))
+        x = target + rd.scale * (rd.Mp @ (rd.b - rd.A @ target))
         nF = len(free)
-        s = x[2 * nF:]
         if rd.tiles and self.strict:
-            x = self._snap_tiles(x, nF, rd, A, b)
+            x = self._snap_tiles(x, nF, rd)
             if x is None:
                 self._fail(Rejection.TILES)
                 return None
-            s = x[2 * nF:]
+        xs = x.tolist()
         tol = 1e-7 * t.unit
-        if not np.all((s > tol) & (((rd.lo - tol <= s) & (s <= rd.hi + tol)) | (not self.strict))):
+        lengths = xs[2 * nF:]
+        if self.strict:
+            ok = all(s > tol and lt <= s <= ht for s, lt, ht in zip(lengths, rd.lo_tol, rd.hi_tol))
+        else:
+            ok = all(s > tol for s in lengths)
+        if not ok:
             self._fail(Rejection.EDGE_LENGTH)
             return None
-        pos = {v: (float(x[2 * k]), float(x[2 * k + 1])) for k, v in enumerate(free)}
+        pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
         # every other vertex must be inside it.
@@ -381,73 +389,85 @@ class Solver:
                                          if self.prim(v) not in self.host.on_border):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
-        if self.strict and not self._planar(pos, edges):
+        if self.strict and not self._planar(pos, rd.edges, rd):
             return None
         return pos
 
-    def _snap_tiles(self, x, nF, rd, A, b):
+    def _snap_tiles(self, x, nF, rd: "_Round"):
         """Round tiled lengths to whole multiples and solve again with them pinned. The
         multiple is the nearest one inside the edge's class when there is one (rounding 1.3
         tiles down to 1 would fall below a class whose minimum is 1.1 tiles)."""
-        rows, vals = [], []
+        vals = []
         for e, tile in rd.tiles:
             k = max(1, round(float(x[2 * nF + e]) / tile))
             k_lo, k_hi = math.ceil(rd.lo[e] / tile - 1e-9), math.floor(rd.hi[e] / tile + 1e-9)
             if max(1, k_lo) <= k_hi:
                 k = min(max(k, k_lo), k_hi)
-            row = np.zeros(A.shape[1])
-            row[2 * nF + e] = 1.0
-            rows.append(row)
             vals.append(k * tile)
-        A2 = np.vstack([A, np.array(rows)])
-        b2 = np.concatenate([b, vals])
+        A2, A2p = rd.pinned_system(nF)
+        b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
-        y = x + np.linalg.pinv(A2, rcond=1e-10) @ (b2 - A2 @ x)
+        y = x + A2p @ (b2 - A2 @ x)
         if float(np.abs(A2 @ y - b2).max()) > 1e-7 * self.host.t.unit * (1 + float(np.abs(b2).max()) / self.host.t.unit):
             return None
         return y
 
     # --- planarity --------------------------------------------------------------------------
-    def _planar(self, pos: dict[int, Point], edges) -> bool:
+    def _planar_context(self, free: list[int]) -> tuple[frozenset, frozenset]:
+        """What a round's crossing tests leave out, the same for each of its samples: the
+        vertices that are replaced or moved, and the host edges that are cut or touch them."""
         host = self.host
-        clr = self.clearance
-        gone = self.removed | {v for v in pos if v in host.prim}
+        gone = self.removed.union(v for v in free if v in host.prim)
         ignore = {min(s, host.link[s[0]][s[1]]) for s in self.change.cut}
         for v in gone:
             for i, s in enumerate(host.link[v]):
                 if s is not None:
                     ignore.add(min((v, i), s))
+        return frozenset(gone), frozenset(ignore)
 
-        def at(v):
-            p = pos.get(v)
-            return host.pos[v] if p is None else p
-
-        segs = [(v, w, at(v), at(w)) for v, _, w, _, _, _ in edges]
+    def _planar(self, pos: dict[int, Point], edges, rd: "_Round") -> bool:
+        # Each test only asks whether some pair is too close, so the order in which pairs are
+        # tried does not matter: the first one found decides.
+        host = self.host
+        hpos, link, grid = host.pos, host.link, host.grid
+        clr = self.clearance
+        gone, ignore = rd.gone, rd.ignore
         # Vertices: no two may coincide.
-        pts = sorted(pos.items())
-        for k, (v, p) in enumerate(pts):
-            for q in host.grid.points_near(p[0] - clr, p[1] - clr, p[0] + clr, p[1] + clr):
-                if q not in gone and _dist(p, host.pos[q]) < clr:
-                    self._fail(Rejection.COINCIDENT)
-                    return False
-            for w, p2 in pts[k + 1:]:
+        pts = list(pos.values())
+        for k, p in enumerate(pts):
+            if grid.point_within(p, clr, gone):
+                self._fail(Rejection.COINCIDENT)
+                return False
+            for p2 in pts[k + 1:]:
                 if _dist(p, p2) < clr:
                     self._fail(Rejection.COINCIDENT)
                     return False
-        # Edges: no crossing or touching except at a shared end.
+        segs = []
+        for v, _, w, _, _, _ in edges:
+            a, c = pos.get(v), pos.get(w)
+            segs.append((v, w, hpos[v] if a is None else a, hpos[w] if c is None else c))
+        # Edges: no crossing or touching except at a shared end. The boxes are compared here,
+        # in seg_near's own terms, since most candidates are far.
         for k, (v, w, a, c) in enumerate(segs):
-            near = host.grid.segments_near(min(a[0], c[0]) - clr, min(a[1], c[1]) - clr,
-                                           max(a[0], c[0]) + clr, max(a[1], c[1]) + clr)
-            for key in sorted(near - ignore):
-                x, i = key
-                y = host.link[x][i][0]
-                if x in (v, w) or y in (v, w):
+            lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
+            ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
+            for key in grid.segments_near(lx - clr, ly - clr, hx + clr, hy + clr):
+                if key in ignore:
                     continue
-                if seg_near(a, c, host.pos[x], host.pos[y], clr):
+                x = key[0]
+                y = link[x][key[1]][0]
+                if x == v or x == w or y == v or y == w:
+                    continue
+                p, q = hpos[x], hpos[y]
+                qlx, qhx = (p[0], q[0]) if p[0] < q[0] else (q[0], p[0])
+                qly, qhy = (p[1], q[1]) if p[1] < q[1] else (q[1], p[1])
+                if lx - clr > qhx or qlx - clr > hx or ly - clr > qhy or qly - clr > hy:
+                    continue
+                if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
             for v2, w2, a2, c2 in segs[k + 1:]:
-                if v2 in (v, w) or w2 in (v, w):
+                if v2 == v or v2 == w or w2 == v or w2 == w:
                     continue
                 if seg_near(a, c, a2, c2, clr):
                     self._fail(Rejection.CROSSING)
@@ -455,22 +475,60 @@ class Solver:
         return True
 
 
-@dataclass(frozen=True)
+@dataclass
 class _Round:
-    """A round's constant arrays: free vertices' base positions (old: where they are, new:
-    their aim), which are new and which have no aim (the change's centre, per sample); edge
-    lengths known in advance (fixed, or kept), which are drawn instead, their class bounds,
-    and the tiled edges."""
+    """A round's system (its edges, matrix, right-hand side, column scales, pseudo-inverse)
+    and constants: free vertices' base coordinates (old: where they are, new: their aim, nan:
+    no aim, the change's centre per sample), which coordinates are new; edge lengths known in
+    advance (fixed, or kept; nan: drawn), their class bounds, where drawn ones are centred,
+    the tiled edges; what the crossing tests leave out. Draw ranges and the tile-pinned
+    system are made once, when first needed."""
 
-    base: np.ndarray
-    new: np.ndarray
-    aimless: np.ndarray
-    known: np.ndarray
-    drawn: np.ndarray
-    lo: np.ndarray
-    hi: np.ndarray
-    centre: np.ndarray       # where drawn lengths are centred
+    edges: list
+    A: np.ndarray
+    b: np.ndarray
+    scale: np.ndarray
+    Mp: np.ndarray
+    base: list
+    new: list
+    known: list
+    lo: list
+    hi: list
+    centre: list
     tiles: list
+    gone: frozenset          # what the crossing tests leave out (_planar_context)
+    ignore: frozenset
+    lo_tol: list             # the class bounds widened by the tolerance
+    hi_tol: list
+    _ranges: dict = field(default_factory=dict)
+    _pinned: tuple | None = None
+
+    def ranges(self, f: float) -> tuple[list, list, list]:
+        """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
+        width). Within (1 ± SPREAD)·centre·f, inside the class's range, or the whole class
+        when that misses it; when a shrunk range falls below the class, its shortest length."""
+        r = self._ranges.get(f)
+        if r is None:
+            los, his = [], []
+            for lo, hi, c in zip(self.lo, self.hi, self.centre):
+                a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
+                if a > bb:
+                    a, bb = (lo, hi) if f == 1.0 or hi < a else (lo, lo)
+                los.append(a)
+                his.append(bb)
+            r = self._ranges[f] = (los, his, [bb - a for a, bb in zip(los, his)])
+        return r
+
+    def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:
+        """A with a row pinning each tiled length, and its pseudo-inverse: the same for every
+        sample of the round (only the pinned values change)."""
+        if self._pinned is None:
+            rows = np.zeros((len(self.tiles), self.A.shape[1]))
+            for r, (e, _) in enumerate(self.tiles):
+                rows[r, 2 * nF + e] = 1.0
+            A2 = np.vstack([self.A, rows])
+            self._pinned = (A2, np.linalg.pinv(A2, rcond=1e-10))
+        return self._pinned
 
 
 @dataclass(frozen=True)
@@ -483,8 +541,11 @@ class Factor:
     M: np.ndarray
     Mp: np.ndarray
     R: np.ndarray
-    fixed_rows: np.ndarray
+    fixed_idx: list          # the lengths that no target moves
     unique: bool
+    absR: np.ndarray
+    Mp_len: np.ndarray       # the rows of Mp and of the scales for the lengths
+    scale_len: np.ndarray
 
 
 class SystemCache:
@@ -528,36 +589,28 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     Mp = np.linalg.pinv(M, rcond=1e-10)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
     R = P[2 * nF:]
-    return Factor(A, scale, M, Mp, R, np.abs(R).max(axis=1, initial=0.0) < 1e-9,
-                  bool(np.abs(P).max(initial=0.0) < 1e-9))
+    fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
+    return Factor(A, scale, M, Mp, R, np.flatnonzero(fixed_rows).tolist(),
+                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R), Mp[2 * nF:],
+                  scale[2 * nF:])
 
 
-def _right_hand_side(shape_edges, edges, pos) -> np.ndarray:
+def _right_hand_side(shape_edges, edges, pos) -> list[float]:
     """b: the fixed ends' positions, then the fixed lengths."""
-    nE = len(edges)
-    fixed = [f for _, _, _, f, _ in shape_edges if f is not None]
-    b = np.zeros(2 * nE + len(fixed))
-    for e, ((iv, iw, _, _, _), (v, _, w, _, _, _)) in enumerate(zip(shape_edges, edges)):
+    b = []
+    for (iv, iw, _, _, _), (v, _, w, _, _, _) in zip(shape_edges, edges):
+        bx = by = 0.0
         if iw < 0:
             pw = pos[w]
-            b[2 * e] -= pw[0]
-            b[2 * e + 1] -= pw[1]
+            bx -= pw[0]
+            by -= pw[1]
         if iv < 0:
             pv = pos[v]
-            b[2 * e] += pv[0]
-            b[2 * e + 1] += pv[1]
-    b[2 * nE:] = fixed
+            bx += pv[0]
+            by += pv[1]
+        b += (bx, by)
+    b.extend(f for _, _, _, f, _ in shape_edges if f is not None)
     return b
-
-
-def _draw_range(lo: float, hi: float, c: float, f: float) -> tuple[float, float]:
-    """Where a new edge's target length is drawn: within (1 ± SPREAD)·c·f, inside its class's
-    range [lo, hi], or the whole class when that misses it; when a shrunk range falls below
-    the class, its shortest length."""
-    a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
-    if a > bb:
-        return (lo, hi) if f == 1.0 or hi < a else (lo, lo)
-    return a, bb
 
 
 def _dist(p: Point, q: Point) -> float:

@@ -1,0 +1,91 @@
+"""The spatial grid's exact queries against brute force: the ray cast to the left (which jumps
+over empty cells) and the coincidence test (on its fine point cells), on sparse and dense
+random drawings, with segments and points added, moved and removed."""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from runtime.geometry.spatial import Grid
+
+coord = st.one_of(st.integers(-40, 40).map(float),                  # shared heights and ends
+                  st.floats(-40, 40, allow_nan=False, allow_infinity=False))
+point = st.tuples(coord, coord)
+
+
+def ray_reference(segs: dict, p, skip=(), tol=0.0):
+    """The documented rule over every segment: the hit furthest right of those left of p, ties
+    by the lean, then by the smaller id."""
+    px, py = p
+    top = py + tol
+    best = None
+    for sid, ((ax, ay), (bx, by)) in segs.items():
+        if sid in skip or (ay > top) == (by > top):
+            continue
+        if ay > by:
+            ax, ay, bx, by = bx, by, ax, ay
+        lean = (bx - ax) / (by - ay)
+        x = ax if ay >= py - tol else ax + (py - ay) * lean
+        if x >= px:
+            continue
+        if best is None or (x, lean) > best[:2] or ((x, lean) == best[:2] and sid < best[2]):
+            best = (x, lean, sid)
+    return None if best is None else (best[2], best[0])
+
+
+def build(cell, pieces, removed):
+    g, segs = Grid(cell, fine=0.5), {}
+    for k, (a, b) in enumerate(pieces):
+        g.add_segment(k, a, b)
+        g.add_point(("a", k), a)
+        g.add_point(("b", k), b)
+        segs[k] = (a, b)
+    for k in sorted(removed):
+        if k in segs:
+            g.remove_segment(k)
+            del segs[k]
+    return g, segs
+
+
+@settings(max_examples=300, deadline=None)
+@given(cell=st.sampled_from([0.5, 1.0, 3.0]),
+       pieces=st.lists(st.tuples(point, point).filter(lambda s: s[0] != s[1]), max_size=25),
+       removed=st.sets(st.integers(0, 24)), rays=st.lists(point, min_size=1, max_size=6),
+       tol=st.sampled_from([0.0, 1e-7]))
+def test_ray_left_finds_what_brute_force_finds(cell, pieces, removed, rays, tol):
+    g, segs = build(cell, pieces, removed)
+    skip = {k for k in segs if k % 7 == 3}
+    for p in rays:
+        assert g.ray_left(p, skip, tol) == ray_reference(segs, p, skip, tol)
+
+
+@settings(max_examples=200, deadline=None)
+@given(pts=st.lists(point, max_size=30), moves=st.lists(st.tuples(st.integers(0, 29), point),
+                                                        max_size=10),
+       probes=st.lists(point, min_size=1, max_size=8), r=st.sampled_from([0.1, 0.5, 2.0]))
+def test_point_within_agrees_with_brute_force(pts, moves, probes, r):
+    g = Grid(1.0, fine=0.5)
+    where = {}
+    for k, p in enumerate(pts):
+        g.add_point(k, p)
+        where[k] = p
+    for k, p in moves:
+        if k in where:
+            g.remove_point(k)
+            g.add_point(k, p)
+            where[k] = p
+    skip = {k for k in where if k % 5 == 1}
+    for p in probes:
+        want = any(((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2) ** 0.5 < r
+                   for k, q in where.items() if k not in skip)
+        assert g.point_within(p, r, skip) == want
+
+
+def test_a_ray_across_a_wide_empty_drawing_still_finds_the_far_wall():
+    g = Grid(1.0)
+    g.add_segment("wall", (-500.0, -1.0), (-500.0, 1.0))
+    g.add_point("w0", (-500.0, -1.0))
+    g.add_point("w1", (-500.0, 1.0))
+    g.add_point("here", (500.0, 0.0))
+    assert g.ray_left((500.0, 0.0)) == ("wall", -500.0)
