@@ -79,15 +79,15 @@ def bare_sides(frame: Frame, primitives, labels) -> list[tuple[int, int] | None]
     n = len(frame.corners)
     for k in range(n):
         a, b = frame.corners[k], frame.corners[(k + 1) % n]
-        i = _slot_towards(primitives[a.prim].ring, labels, b.x - a.x, b.y - a.y)
-        j = _slot_towards(primitives[b.prim].ring, labels, a.x - b.x, a.y - b.y)
+        i = slot_towards(primitives[a.prim].ring, labels, b.x - a.x, b.y - a.y)
+        j = slot_towards(primitives[b.prim].ring, labels, a.x - b.x, a.y - b.y)
         ok = i is not None and j is not None and \
             primitives[a.prim].ring[i] == bd.opposite(primitives[b.prim].ring[j])
         out.append((i, j) if ok else None)
     return out
 
 
-def _slot_towards(ring, labels, dx: float, dy: float) -> int | None:
+def slot_towards(ring, labels, dx: float, dy: float) -> int | None:
     """The slot of a ring whose half-edge points along (dx, dy), within a hair."""
     angle = math.degrees(math.atan2(dy, dx))
     for i, t in enumerate(ring):

@@ -10,7 +10,7 @@ around the corners.
 from __future__ import annotations
 
 from grammar_lang.diagnostics import error
-from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives
+from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, slot_towards
 
 from .change import HostView
 
@@ -48,7 +48,7 @@ def _mark(host: HostView, frame: Frame, ids: list[int]) -> None:
     """What the host knows of its frame: pinned corners, the inside face, border labels."""
     h = host.header
     c0, c1 = frame.corners[0], frame.corners[1]
-    i = _slot_towards(host.t, c0.prim, c1.x - c0.x, c1.y - c0.y)
+    i = slot_towards(h.primitives[c0.prim].ring, h.labels, c1.x - c0.x, c1.y - c0.y)
     inside = host.t.left[c0.prim][i] if _counter_clockwise(frame) else host.t.right[c0.prim][i]
     host.pinned = frozenset(ids)
     host.frame = frame
@@ -115,11 +115,3 @@ def random_inside(host: HostView, rng) -> tuple[float, float]:
         if host.frame.contains(*p):
             return p
     return p
-
-
-def _slot_towards(t, prim: int, dx: float, dy: float) -> int | None:
-    norm = (dx * dx + dy * dy) ** 0.5
-    for i, (ux, uy) in enumerate(t.direction[prim]):
-        if abs(ux * dx + uy * dy - norm) <= 1e-9 * max(norm, 1.0):
-            return i
-    return None
