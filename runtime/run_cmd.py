@@ -27,8 +27,12 @@ DEFAULT_STEPS = 200
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--steps", type=int, default=DEFAULT_STEPS, metavar="N",
-                   help=f"rule applications per drawing (default {DEFAULT_STEPS})")
+    p.add_argument("--steps", type=int, metavar="N",
+                   help=f"rule applications per drawing (default {DEFAULT_STEPS}, or no bound "
+                        "with --iterations)")
+    p.add_argument("--iterations", type=int, metavar="N",
+                   help="proposals per drawing, applied or not: the paper's N (Algorithm 3); "
+                        "the run ends after N, or at --steps applied, whichever comes first")
     p.add_argument("--seed", type=_seed, default=0, metavar="S", help="random seed (default 0)")
     p.add_argument("--out", metavar="PATH",
                    help="output file, .svg, .png, .json or .graphml by extension "
@@ -71,7 +75,7 @@ def _seed(text: str) -> int:
 class Job:
     grammar: Grammar
     seed: int
-    steps: int
+    steps: int | None           # None: no bound (the run ends at `iterations`)
     cost: str | None
     temperature: float
     limits: tuple[tuple[int, int], ...]
@@ -80,6 +84,12 @@ class Job:
     name: str
     extent: tuple[float, float] | None = None
     png: tuple[int | None, float | None] = (None, None)     # --width, --scale
+    iterations: int | None = None
+
+    @property
+    def size(self) -> int:
+        """The default size cost's N: the steps asked for, else the iterations."""
+        return self.steps if self.steps is not None else self.iterations
 
 
 # What turns an example into a grammar: the compiler's `compile_example`, handed in by the
@@ -168,11 +178,12 @@ def run_job(job: Job, progress=None) -> Summary | None:
     from .engine.costs import parse_cost       # numpy and the engine load only when a run starts,
     from .engine.generate import Engine        # so --help and --version stay quick
     engine = Engine(job.grammar, job.seed,
-                    parse_cost(job.cost, job.grammar.header.labels, job.steps,
+                    parse_cost(job.cost, job.grammar.header.labels, job.size,
                                job.grammar.header),
                     job.temperature, bidirectional=job.bidirectional, limits=dict(job.limits),
                     extent=job.extent)
-    summary = engine.run(job.steps, progress, stop=interrupt.requested)
+    summary = engine.run(job.steps, progress, stop=interrupt.requested,
+                         iterations=job.iterations)
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
     write_drawing(drawing, job.grammar, job.out, job.png)
@@ -224,7 +235,7 @@ def run_command(args: argparse.Namespace) -> int:
     extent = parse_extent(args.extent, grammar)
     jobs = [Job(grammar, args.seed + k, args.steps, args.cost, args.temperature,
                 parse_limits(args.limit), both, path, Path(args.file).name, extent,
-                (args.width, args.scale))
+                (args.width, args.scale), args.iterations)
             for k, path in enumerate(output_paths(out, args.count))]
     parallel = args.jobs > 1 and len(jobs) > 1
     stop = multiprocessing.Event() if parallel else threading.Event()
@@ -243,10 +254,13 @@ def _output_path(args: argparse.Namespace) -> str:
     grammar: a file is given, the counts are in range, the format and PNG size are known."""
     if args.file is None:
         raise error("no grammar given", None, "run 'ggrun FILE.ggr', or 'ggrun --help'")
-    for flag in ("steps", "count", "jobs"):
-        if getattr(args, flag) < (0 if flag == "steps" else 1):
-            raise error(f"--{flag} {getattr(args, flag)} is out of range", None,
-                        f"--{flag} takes a whole number of at least {0 if flag == 'steps' else 1}")
+    if args.steps is None and getattr(args, "iterations", None) is None:
+        args.steps = DEFAULT_STEPS
+    for flag, least in (("steps", 0), ("iterations", 0), ("count", 1), ("jobs", 1)):
+        value = getattr(args, flag, None)
+        if value is not None and value < least:
+            raise error(f"--{flag} {value} is out of range", None,
+                        f"--{flag} takes a whole number of at least {least}")
     out = args.out or str(Path(Path(args.file).name).with_suffix(".svg"))
     if Path(out).suffix.lower() not in (".svg", ".png", ".json", ".graphml"):
         raise error(f"--out {out}: unknown output format", None,
@@ -259,11 +273,12 @@ def _output_path(args: argparse.Namespace) -> str:
 def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
     """The options that depend on the grammar, checked once, before any work."""
     from .engine.costs import parse_cost
-    if grammar.is_free and (args.cost or args.direction or args.extent):
-        raise error("--cost, --direction and --extent apply to angle-graph rules, not to "
-                    "productions",
+    if grammar.is_free and (args.cost or args.direction or args.extent or args.iterations):
+        raise error("--cost, --direction, --extent and --iterations apply to angle-graph "
+                    "rules, not to productions",
                     None, "productions run forward, one step at a time, by priority and weight")
-    parse_cost(args.cost, grammar.header.labels, args.steps)
+    parse_cost(args.cost, grammar.header.labels,
+               args.steps if args.steps is not None else args.iterations)
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")
@@ -294,7 +309,7 @@ def _run_jobs(jobs: list[Job], workers: int, stop, show: bool) -> list[tuple[Job
 
 def _report_empty(args: argparse.Namespace, done: list[tuple[Job, Summary]]) -> int:
     """Say which drawings came out empty, with a hint why: the exit status."""
-    empty = [(j, s) for j, s in done if s.vertices == 0 and args.steps > 0]
+    empty = [(j, s) for j, s in done if s.vertices == 0 and j.size > 0]
     hint = ("check --cost and --limit: a size:0 cost or a --limit of 0 steps keeps the "
             "drawing empty" if args.cost or args.limit else
             "the grammar draws nothing from an empty drawing; see its starter rules")
@@ -316,10 +331,13 @@ def _run_with_progress(job: Job) -> Summary:
                   TextColumn("{task.completed}/{task.total} steps"),
                   TextColumn("{task.fields[size]} vertices"), TimeElapsedColumn(),
                   console=stderr_console(), transient=True) as bar:
-        task = bar.add_task("grow", total=job.steps, seed=job.seed, size=0)
+        by_steps = job.steps is not None
+        bar.columns[2].text_format = "{task.completed}/{task.total} " + \
+            ("steps" if by_steps else "iterations")
+        task = bar.add_task("grow", total=job.size, seed=job.seed, size=0)
 
         def tick(s: Summary) -> None:
-            bar.update(task, completed=s.applied, size=s.vertices)
+            bar.update(task, completed=s.applied if by_steps else s.proposals, size=s.vertices)
 
         return run_job(job, tick)
 

@@ -285,15 +285,20 @@ class Engine:
         self.applied_by_level[EDIT_LEVEL] = self.applied_by_level.get(EDIT_LEVEL, 0) + 1
         return rec
 
-    def run(self, steps: int, progress: Callable[[Summary], None] | None = None,
-            every: int = 50, stop: Callable[[], bool] | None = None) -> Summary:
-        """Apply up to `steps` steps; stops early on a terminal drawing, a stall, or when
-        `stop()` says so (it is asked between steps, so the drawing is always whole)."""
+    def run(self, steps: int | None, progress: Callable[[Summary], None] | None = None,
+            every: int = 50, stop: Callable[[], bool] | None = None,
+            iterations: int | None = None) -> Summary:
+        """Apply up to `steps` steps (None: no bound), in at most `iterations` proposals,
+        applied or not (the paper's N, Algorithm 3); stops early on a terminal drawing, when
+        `stop()` says so (it is asked between steps, so the drawing is always whole), or,
+        without `iterations`, on a stall: with them the work is bounded already, and the
+        paper's walk goes on proposing however many fail."""
         s = Summary()
         t0 = time.perf_counter()
         stall = 0
         most = limits.DRAWING.value()
-        while s.applied < steps:
+        while (steps is None or s.applied < steps) and \
+                (iterations is None or s.proposals < iterations):
             if stop is not None and stop():
                 s.stop = INTERRUPTED
                 break
@@ -315,7 +320,7 @@ class Engine:
                 s.rejected += 1
                 s.reasons[out.reason] = s.reasons.get(out.reason, 0) + 1
                 stall += 1
-                if stall >= MAX_STALL:
+                if stall >= MAX_STALL and iterations is None:
                     common = max(sorted(s.reasons), key=lambda k: s.reasons[k])
                     s.stop = (f"stalled: {MAX_STALL} proposals in a row were rejected "
                               f"(most often: {common})")
@@ -325,7 +330,8 @@ class Engine:
                 s.vertices, s.edges = len(self.host), self.host.n_edges
                 progress(s)
         if not s.stop:
-            s.stop = f"reached {steps} steps"
+            s.stop = (f"reached {steps} steps" if steps is not None and s.applied >= steps
+                      else f"reached {iterations} iterations")
         s.seconds = time.perf_counter() - t0
         s.vertices, s.edges = len(self.host), self.host.n_edges
         return s

@@ -55,7 +55,8 @@ class Options:
     @staticmethod
     def from_args(args: argparse.Namespace) -> "Options":
         both = None if args.direction is None else args.direction == "both"
-        return Options(args.seed, args.steps, args.cost, args.temperature,
+        size = args.steps if args.steps is not None else (args.iterations or DEFAULT_STEPS)
+        return Options(args.seed, size, args.cost, args.temperature,
                        parse_limits(args.limit), both)
 
 
