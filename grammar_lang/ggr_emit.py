@@ -143,6 +143,8 @@ def _header(h: Header, names: list[str]) -> list[str]:
             line += f" length={num(l.length)}"
         if l.typical is not None:
             line += f" typical={num(l.typical)}"
+        if l.shortest is not None:
+            line += f" shortest={num(l.shortest)}"
         out.append(line)
     if h.primitives:
         out.append("")

@@ -184,14 +184,14 @@ class HeaderReader(Reader):
         if cls not in classes:
             raise self.fail(f"unknown edge class '{cls}'", where["class"],
                             did_you_mean(cls, classes) or "declare it with a 'class' line")
-        length, typical = s.get("length"), s.get("typical")
-        for key, value in (("length", length), ("typical", typical)):
+        length, typical, shortest = s.get("length"), s.get("typical"), s.get("shortest")
+        for key, value in (("length", length), ("typical", typical), ("shortest", shortest)):
             if value is not None and not value > 0:
                 raise self.fail(f"the {key} must be positive", where[key])
         name = self.name(tok)
         if not name:
             raise self.fail("an edge label needs a name", tok)
-        return EdgeLabel(name, s["left"], s["right"], angle, cls, length, typical)
+        return EdgeLabel(name, s["left"], s["right"], angle, cls, length, typical, shortest)
 
     def _half(self, node: Tree, label_ids: dict[str, int]) -> tuple[int, Token]:
         bar = len(node.children) == 2
@@ -260,5 +260,5 @@ _LIMIT_KEYS = {"generations": "int", "half_edges": "int", "graphs": "int", "seco
 _CLASS_KEYS = {"min": "optfloat", "max": "optfloat", "fixed": "optfloat", "tile": "optfloat",
                "rigid": "bool", "border": "bool"}
 _LABEL_KEYS = {"angle": "float", "left": "name", "right": "name", "class": "name",
-               "length": "optfloat", "typical": "optfloat"}
+               "length": "optfloat", "typical": "optfloat", "shortest": "optfloat"}
 _PRIMITIVE_KEYS = {"count": "int"}

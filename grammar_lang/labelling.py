@@ -195,7 +195,8 @@ def _circ_dist(a: float, b: float, period: float) -> float:
 
 class _Proto(NamedTuple):
     """An edge label before it is named: its direction, faces, class, rigid length, the
-    example's edges it types, whether it is a rigid edge's own label, its typical length."""
+    example's edges it types, whether it is a rigid edge's own label, its typical (median)
+    and shortest lengths."""
 
     angle: float
     left: str
@@ -205,6 +206,7 @@ class _Proto(NamedTuple):
     edges: list[int]
     rigid: bool
     typical: float | None
+    shortest: float | None
 
 
 def _cluster(source, obs, edge_keys, faces, rigid, lengths):
@@ -218,7 +220,8 @@ def _cluster(source, obs, edge_keys, faces, rigid, lengths):
     labels: list[EdgeLabel] = []
     edge_label: dict[int, tuple[int, bool]] = {}
     for idx, (p, name) in enumerate(zip(protos, _names(protos, rank))):
-        labels.append(EdgeLabel(name, p.left, p.right, p.angle, p.cls, p.length, p.typical))
+        labels.append(EdgeLabel(name, p.left, p.right, p.angle, p.cls, p.length, p.typical,
+                                p.shortest))
         for e in p.edges:
             a, l, r = edge_keys[e][0], edge_keys[e][1], edge_keys[e][2]
             # Whether u→v walks along `a`: told by the faces when they differ, else by direction.
@@ -282,7 +285,8 @@ def _proto(gk, ang, edges, period, rigid, lengths) -> _Proto:
     a_angle = round(a_angle, 9) % 180.0
     length = lengths[edges[0]] if (cls in rigid and lengths) else None
     typical = _round_sig(float(np.median([lengths[e] for e in edges]))) if lengths else None
-    return _Proto(a_angle, left, right, cls, length, edges, len(gk) > 2, typical)
+    shortest = _round_sig(min(lengths[e] for e in edges)) if lengths else None
+    return _Proto(a_angle, left, right, cls, length, edges, len(gk) > 2, typical, shortest)
 
 
 def _round_sig(x: float, digits: int = 6) -> float:

@@ -21,7 +21,8 @@ class EdgeLabel:
     right are the faces seen walking in that direction. A rigid label also fixes its length.
     `typical` is the median length of the example's edges of this label (None for an example
     given without geometry): the runtime draws new edges of this label around it, so that a
-    structure grown in one move keeps the proportions of its parts."""
+    structure grown in one move keeps the proportions of its parts. `shortest` is the
+    example's shortest edge of this label: new edges may be as short (see Tables.least)."""
 
     name: str
     left: str
@@ -30,6 +31,7 @@ class EdgeLabel:
     cls: str
     length: float | None = None
     typical: float | None = None
+    shortest: float | None = None
 
     def direction(self, bar: bool) -> float:
         """Direction in [-180°, 180°) of the half-edge `a` (bar=False) or `ā` (bar=True)."""

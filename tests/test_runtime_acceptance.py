@@ -16,7 +16,7 @@ import pytest
 
 from conftest import CORPUS, ROOT, corpus_names
 
-sys.path.insert(0, str(ROOT / "benchmarks"))
+sys.path.append(str(ROOT / "benchmarks"))  # last: benchmarks/report.py must not hide `report`
 import acceptance as acc  # noqa: E402
 from grammar_lang.frame import find_frame  # noqa: E402
 from grammar_lang.loader import load_example  # noqa: E402

@@ -49,15 +49,19 @@ def _mark(host: HostView, frame: Frame, ids: list[int]) -> None:
     h = host.header
     c0, c1 = frame.corners[0], frame.corners[1]
     i = slot_towards(h.primitives[c0.prim].ring, h.labels, c1.x - c0.x, c1.y - c0.y)
-    inside = host.t.left[c0.prim][i] if _counter_clockwise(frame) else host.t.right[c0.prim][i]
+    ccw = _counter_clockwise(frame)
+    inside = host.t.left[c0.prim][i] if ccw else host.t.right[c0.prim][i]
+    outside = host.t.right[c0.prim][i] if ccw else host.t.left[c0.prim][i]
     host.pinned = frozenset(ids)
     host.frame = frame
     host.frame_face = inside
     host.border_labels = border_labels(h.labels, h.classes)
-    # The frame's own sides (border edges with the inside face beside them) are as long as
-    # the frame; other border edges are the feet of what stands on it.
+    # The frame's own sides (border edges between the space inside and the outside) are as
+    # long as the frame; other border edges are the feet of what stands on it, which keep
+    # their own lengths. Faces, not the inside face alone: a grounded scene's outside has the
+    # sky's label, so a tower's foot has the sky beside it too.
     host.side_labels = frozenset(k for k in host.border_labels
-                                 if inside in (h.labels[k].left, h.labels[k].right))
+                                 if {h.labels[k].left, h.labels[k].right} <= {inside, outside})
     host.on_border = border_primitives(h.primitives, host.border_labels)
 
 

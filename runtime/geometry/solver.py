@@ -343,8 +343,15 @@ class Solver:
                 tiles.append((e, tile))
         context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
         tol = 1e-7 * t.unit
+        # Every edge keeps its proportion (Tables.least), a kept one too: the projection may
+        # change its length when an end moves. A frame's side has none.
+        floor = t.least or (0.0,) * len(t.lengths)
+        least = [0.0 if lab in host.side_labels or kn == kn else floor[lab]
+                 for kn, (*_, lab) in zip(known, edges)]
         return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi, centre,
-                      tiles, *context, [x - tol for x in lo], [x + tol for x in hi])
+                      tiles, *context, [max(x - tol, m) for x, m in zip(lo, least)],
+                      [x + tol for x in hi])
+
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
