@@ -86,6 +86,16 @@ def assert_only_starters_float(host, g):
             assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
 
 
+def assert_inside_its_frame(host, frame):
+    """The frame's corners are pinned where it has them, and every vertex lies inside it."""
+    corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)
+    assert corners == sorted(((c.x, c.y), c.prim) for c in frame.corners)
+    x0, y0, x1, y1 = frame.box
+    for v in host.vertices():
+        x, y = host.pos[v]
+        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+
+
 FRAMED = sorted(p.name for p in EXAMPLES.glob("*.gg") if find_frame(load_example(p)) is not None)
 
 
@@ -116,11 +126,7 @@ def test_the_paper_scenes_grow_every_part_inside_one_frame(name):
     eng.run(120)
     host = eng.host
     assert len(host) > start + 20, f"{len(host)} vertices from a start of {start}"
-    frame = g.header.frame
-    assert sorted(host.pos[v] for v in host.pinned) == sorted((c.x, c.y) for c in frame.corners)
-    x0, y0, x1, y1 = frame.box
-    assert all(x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
-               for x, y in host.pos.values())
+    assert_inside_its_frame(host, g.header.frame)
     drawing = host.to_drawing()
     faces = {f for e in drawing.edges for f in (e.left, e.right)}
     assert faces == {f for l in g.header.labels for f in (l.left, l.right)}
@@ -197,12 +203,7 @@ def test_a_scene_grows_inside_its_frame(scene, seed):
     eng.run(30)
     host = eng.host
     frame = res.grammar.header.frame
-    corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)
-    assert corners == sorted(((c.x, c.y), c.prim) for c in frame.corners)
-    x0, y0, x1, y1 = frame.box
-    for v in host.vertices():
-        x, y = host.pos[v]
-        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+    assert_inside_its_frame(host, frame)
     # Exactly one frame: each corner primitive once, and something stands on it.
     for c in frame.corners:
         assert len(host.by_prim[c.prim]) == 1
