@@ -43,6 +43,12 @@ SCENES = (
     Scene("flowers-scene", ROOT / "examples" / "flowers.gg", 2000, 3,
           "this project's flowers in a frame (`examples/flowers.gg`), their stems bent "
           "(Appendix B)"),
+    Scene("village-scene", ROOT / "examples" / "village.gg", 4200, 65,
+          "this project's village in a frame (`examples/village.gg`): two strips of land and "
+          "the sky above, houses and trees along each"),
+    Scene("station-scene", ROOT / "examples" / "space-station.gg", 3700, 22,
+          "this project's space station in a frame (`examples/space-station.gg`): modules "
+          "and solar panels along two trusses that span the frame"),
     Scene("castle", ILLUSTRATIONS / "castle.gg", 4000, 80, "the paper's Fig. 1 castle"),
     Scene("flowers", ILLUSTRATIONS / "flowers.gg", 2000, 42, "the paper's Fig. 9f flowers"),
     Scene("space-station", ILLUSTRATIONS / "space-station.gg", 3700, 22,

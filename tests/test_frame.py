@@ -86,6 +86,16 @@ def assert_only_starters_float(host, g):
             assert tuple(sorted(Counter(host.prim[v] for v in c).items())) in free
 
 
+def assert_inside_its_frame(host, frame):
+    """The frame's corners are pinned where it has them, and every vertex lies inside it."""
+    corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)
+    assert corners == sorted(((c.x, c.y), c.prim) for c in frame.corners)
+    x0, y0, x1, y1 = frame.box
+    for v in host.vertices():
+        x, y = host.pos[v]
+        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+
+
 FRAMED = sorted(p.name for p in EXAMPLES.glob("*.gg") if find_frame(load_example(p)) is not None)
 
 
@@ -96,7 +106,32 @@ def _framed(name):
 
 
 def test_the_framed_examples_are_the_scenes():
-    assert {"castle.gg", "castle-scene.gg", "flowers.gg", "platform.gg"} <= set(FRAMED)
+    assert {"castle.gg", "castle-scene.gg", "flowers.gg", "platform.gg", "village.gg",
+            "space-station.gg"} <= set(FRAMED)
+
+
+# This project's versions of the paper's four illustrations (Fig. 1, Fig. 9b, 9f, 9g).
+PAPER_SCENES = ["castle-scene.gg", "flowers.gg", "space-station.gg", "village.gg"]
+
+
+@pytest.mark.parametrize("name", PAPER_SCENES)
+def test_the_paper_scenes_grow_every_part_inside_one_frame(name):
+    """Run as shipped (the default cost in a frame), each grows past its start: one frame,
+    its corners where the example has them, every vertex inside it, every face label of the
+    example in the drawing, and the verifier passes."""
+    ex, g = _framed(name)
+    from runtime.engine.costs import default_cost
+    eng = Engine(g, seed=1, cost=default_cost(g.header, 120))
+    start = len(g.header.frame.start.vertices) if g.header.frame.start else 4
+    eng.run(120)
+    host = eng.host
+    assert len(host) > start + 20, f"{len(host)} vertices from a start of {start}"
+    assert_inside_its_frame(host, g.header.frame)
+    drawing = host.to_drawing()
+    faces = {f for e in drawing.edges for f in (e.left, e.right)}
+    assert faces == {f for l in g.header.labels for f in (l.left, l.right)}
+    failures = check_drawing(ex, drawing)
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
 
 
 @pytest.mark.parametrize("name", FRAMED)
@@ -168,12 +203,7 @@ def test_a_scene_grows_inside_its_frame(scene, seed):
     eng.run(30)
     host = eng.host
     frame = res.grammar.header.frame
-    corners = sorted((host.pos[v], host.prim[v]) for v in host.pinned)
-    assert corners == sorted(((c.x, c.y), c.prim) for c in frame.corners)
-    x0, y0, x1, y1 = frame.box
-    for v in host.vertices():
-        x, y = host.pos[v]
-        assert x0 - 1e-6 <= x <= x1 + 1e-6 and y0 - 1e-6 <= y <= y1 + 1e-6
+    assert_inside_its_frame(host, frame)
     # Exactly one frame: each corner primitive once, and something stands on it.
     for c in frame.corners:
         assert len(host.by_prim[c.prim]) == 1
