@@ -2,10 +2,11 @@
 
 Run from the repository root with the package installed:
     python docs/make_gallery.py             # the paper's N (several minutes)
-    python docs/make_gallery.py --quick     # 10 and 20 steps, to check that it runs
+    python docs/make_gallery.py --quick     # 40 and 80 iterations, to check that it runs
 For each scene it draws the example as `ggc draw` reads it, then two drawings with `ggrun`: one
 at a quarter of the paper's N and one at its N (Table 1 of the paper, the illustrations'
-README), and writes what each run reported, including a run that stopped early.
+README), N counted as the paper counts it, in iterations (proposals, applied or not: `ggrun
+--iterations`), and writes what each run reported.
 The paper's illustrations are read from the corpus (`GG_CORPUS`, default
 ../shared/corpus/examples beside the repository; the illustrations sit next to it).
 """
@@ -29,7 +30,7 @@ ILLUSTRATIONS = CORPUS.parent / "illustrations"
 class Scene:
     name: str
     source: Path
-    steps: int          # the paper's N
+    iterations: int     # the paper's N
     seed: int
     about: str
 
@@ -77,11 +78,11 @@ def draw_scene(s: Scene, out: Path, quick: bool, page_dir: Path) -> list[str]:
     example = out / f"{s.name}-example.png"
     tool(["report.ggc", "draw", str(s.source), "-o", str(example), "--width", "800"])
     cells = [("the example, as read", example.name, "")]
-    for n in ((10, 20) if quick else (s.steps // 4, s.steps)):
+    for n in ((40, 80) if quick else (s.iterations // 4, s.iterations)):
         png = out / f"{s.name}-{n}.png"
-        res = tool(["report.ggrun", str(s.source), "--steps", str(n), "--seed", str(s.seed),
-                    "--out", str(png), "--width", "800"])
-        cells.append((f"{n} steps", png.name if png.exists() else "", summary(res)))
+        res = tool(["report.ggrun", str(s.source), "--iterations", str(n), "--seed",
+                    str(s.seed), "--out", str(png), "--width", "800"])
+        cells.append((f"{n:,} iterations", png.name if png.exists() else "", summary(res)))
     row += ["| " + " | ".join(c[0] for c in cells) + " |",
             "|" + "---|" * len(cells),
             "| " + " | ".join(f"![{c[0]}]({rel / c[1]})" if c[1] else "(no drawing)"
@@ -92,7 +93,8 @@ def draw_scene(s: Scene, out: Path, quick: bool, page_dir: Path) -> list[str]:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="10 and 20 steps, to check that it runs")
+    ap.add_argument("--quick", action="store_true",
+                    help="40 and 80 iterations, to check that it runs")
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "images" / "gallery",
                     help="where the pictures go")
     ap.add_argument("--page", type=Path, default=ROOT / "docs" / "gallery.md")
@@ -102,9 +104,10 @@ def main(argv=None) -> int:
         "# Gallery: scenes in a frame", "",
         "Made by `python docs/make_gallery.py`, which writes this page. Each scene shows its",
         "example as `ggc draw` reads it and two drawings grown by `ggrun`, at a quarter of the",
-        "paper's number of iterations N and at N (the paper's Table 1). Under each is what the",
-        "run reported, including runs that stopped early (for this project's own examples N",
-        "is ours). See [scenes.md](scenes.md) for how frames work and what is still open.", ""]
+        "paper's number of iterations N and at N (the paper's Table 1; an iteration is one",
+        "proposal, applied or not, as in the paper's Algorithm 3: `ggrun --iterations`). Under",
+        "each is what the run reported (for this project's own examples N is ours). See",
+        "[scenes.md](scenes.md) for how frames work and what is still open.", ""]
     for s in SCENES:
         print(f"{s.name} …", flush=True)
         text += draw_scene(s, args.out.resolve(), args.quick, args.page.resolve().parent)

@@ -82,20 +82,15 @@ class LabelCost:
         return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
 
 
-# Why 2: at weight 1 one castle run in four let a face label fall to 0.73 of its example share
-# within 400 steps (the size term pays for growth at the same rate); at 2 every share stays
-# within 0.93–1.05, for about twice the proposals.
-SHARE_WEIGHT = 2.0
-
-
 @dataclass(frozen=True)
 class SceneCost:
     """The default in a frame: `size`, plus the example's proportions. Each face label's
     share of the edges beside it is held near its share in the example (the edges beside a
     window over all edges, say), so that as the run grows the cheap parts do not crowd out the
-    rest: |count − share·edges| per face label, in edges, SHARE_WEIGHT times, added to the
-    size term. The space the frame holds (the face just inside it) is left out: it is beside
-    everything."""
+    rest: |count − share·edges| per face label, in edges, added to the size term. The space
+    the frame holds (the face just inside it) is left out: it is beside everything. (At
+    weight 2 a scene that starts from its frame's start graph, the example's own proportions,
+    refuses every first move.)"""
 
     size: SizeCost
     groups: tuple[tuple[int, ...], ...]     # per face label: the edge labels beside it
@@ -105,7 +100,7 @@ class SceneCost:
     def value(self, s: Stats) -> float:
         off = sum(abs(sum(s.label_count[k] for k in ks) - f * s.edges)
                   for ks, f in zip(self.groups, self.shares))
-        return self.size.value(s) + SHARE_WEIGHT * off
+        return self.size.value(s) + off
 
 
 def default_cost(header, steps: int) -> Cost:

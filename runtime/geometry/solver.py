@@ -574,6 +574,19 @@ class SystemCache:
         return fact
 
 
+def _pinv(M: np.ndarray, rcond: float = 1e-10) -> np.ndarray:
+    """numpy's pseudo-inverse; where its SVD (LAPACK gesdd) does not converge, which happens
+    on some finite, rank-deficient systems of large structures, the slower and sturdier
+    gesvd gives the same pseudo-inverse."""
+    try:
+        return np.linalg.pinv(M, rcond=rcond)
+    except np.linalg.LinAlgError:
+        import scipy.linalg
+        u, sv, vt = scipy.linalg.svd(M, full_matrices=False, lapack_driver="gesvd")
+        keep = sv > rcond * (sv[0] if sv.size else 0.0)
+        return (vt[keep].T / sv[keep]) @ u[:, keep].T
+
+
 def _factorise(kind: tuple[int, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
     p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
@@ -593,7 +606,7 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     scale[:2 * nF] = np.repeat(POS_SCALE[np.asarray(kind, dtype=int)], 2)
     scale[2 * nF:] = [FRAME_SIDE if side else LENGTH for *_, side in edges]
     M = A * scale
-    Mp = np.linalg.pinv(M, rcond=1e-10)
+    Mp = _pinv(M)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
     R = P[2 * nF:]
     fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
