@@ -7,7 +7,7 @@ paper's N is not a number of applied steps).
 The table shows our figures beside the paper's: compile time against its grammar time,
 total time against its total, hierarchy graphs and rules, output vertices against its output
 primitives (which count its merged rigid units, so they are smaller), the structures besides
-the frame, the share of the example's face labels present, and how much of the frame the
+the frame, the shares of the example's face labels and edge classes present, and how much of the frame the
 drawing covers: the area of the convex hull of every vertex not on the frame, over the
 frame's area.
 
@@ -71,10 +71,14 @@ def measure(name: str, iterations: int | None) -> dict:
     faces = {f for prim in range(len(host.t.rings)) if host.prim_count[prim]
              for f in host.t.left[prim] + host.t.right[prim]}
     wanted = set(example.face_labels) - {example.exterior}
-    return {"name": name, "iterations": summary.proposals, "steps": summary.applied, "compile": t_compile, "total": t_total,
+    drawn = {host.t.label_class[host.t.label[host.prim[v]][i]] for v, i, _, _ in host.edges()}
+    classes = {lab.cls for lab in result.grammar.header.labels}
+    return {"name": name, "iterations": summary.proposals, "steps": summary.applied,
+            "compile": t_compile, "total": t_total,
             "graphs": result.report.hierarchy_graphs, "rules": len(result.grammar.rules),
             "vertices": len(host), "components": nx.number_connected_components(g),
             "labels": len(faces & wanted) / max(1, len(wanted)), "covered": covered,
+            "classes": len(drawn & classes) / max(1, len(classes)),
             "stop": summary.stop}
 
 
@@ -88,7 +92,7 @@ def main(argv=None) -> int:
           f"Python {platform.python_version()}")
     print(f"{'example':<14}{'iter.':>6}{'steps':>6}{'compile s':>10}{'(paper)':>8}{'total s':>9}{'(paper)':>8}"
           f"{'graphs':>7}{'(paper)':>8}{'rules':>6}{'(paper)':>8}{'vertices':>9}{'(paper)':>8}"
-          f"{'parts':>6}{'labels':>7}{'covered':>8}")
+          f"{'parts':>6}{'labels':>7}{'classes':>8}{'covered':>8}")
     from grammar_lang.diagnostics import UserError
     for name in args.names:
         try:
@@ -100,6 +104,7 @@ def main(argv=None) -> int:
         print(f"{name:<14}{r['iterations']:>6}{r['steps']:>6}{r['compile']:>10.2f}{gram:>8}{r['total']:>9.1f}"
               f"{total:>8}{r['graphs']:>7}{graphs:>8}{r['rules']:>6}{rules:>8}"
               f"{r['vertices']:>9}{out:>8}{r['components']:>6}{r['labels']:>7.0%}"
+              f"{r['classes']:>8.0%}"
               f"{r['covered']:>8.1%}" + (f"  ({r['stop']})" if r["stop"] else ""), flush=True)
     return 0
 
