@@ -7,9 +7,9 @@ paper's N is not a number of applied steps).
 The table shows our figures beside the paper's: compile time against its grammar time,
 total time against its total, hierarchy graphs and rules, output vertices against its output
 primitives (which count its merged rigid units, so they are smaller), the structures besides
-the frame, the shares of the example's face labels and edge classes present, and how much of the frame the
-drawing covers: the area of the convex hull of every vertex not on the frame, over the
-frame's area.
+the frame, the shares of the example's face labels and edge classes present, and how much
+of the frame the drawing covers: the area of the convex hull of every vertex not on the
+frame, over the frame's area.
 
     .venv/bin/python benchmarks/paper.py                       # the paper's N
     .venv/bin/python benchmarks/paper.py --iterations 500      # a quick look
