@@ -13,6 +13,7 @@ frame, over the frame's area.
 
     .venv/bin/python benchmarks/paper.py                       # the paper's N
     .venv/bin/python benchmarks/paper.py --iterations 500      # a quick look
+    .venv/bin/python benchmarks/paper.py --steps 300 castle    # time 300 applied steps
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ PAPER = {
 }
 
 
-def measure(name: str, iterations: int | None) -> dict:
+def measure(name: str, iterations: int | None, steps: int | None = None) -> dict:
     import networkx as nx
     import shapely
 
@@ -56,7 +57,7 @@ def measure(name: str, iterations: int | None) -> dict:
     t_compile = time.perf_counter() - t0
     engine = Engine(result.grammar, seed=seed,
                     cost=default_cost(result.grammar.header, iterations or n))
-    summary = engine.run(None, iterations=iterations or n)
+    summary = engine.run(steps, iterations=iterations or n)
     t_total = time.perf_counter() - t0
     host = engine.host
     g = nx.Graph()
@@ -87,6 +88,8 @@ def main(argv=None) -> int:
     ap.add_argument("names", nargs="*", default=sorted(PAPER), help="illustrations to run")
     ap.add_argument("--iterations", type=int,
                     help="proposals per drawing, applied or not (default: the paper's N)")
+    ap.add_argument("--steps", type=int,
+                    help="stop after this many applied steps (within the iterations)")
     args = ap.parse_args(argv)
     print(f"machine: {platform.machine()}, {platform.processor() or platform.system()}, "
           f"Python {platform.python_version()}")
@@ -96,7 +99,7 @@ def main(argv=None) -> int:
     from grammar_lang.diagnostics import UserError
     for name in args.names:
         try:
-            r = measure(name, args.iterations)
+            r = measure(name, args.iterations, args.steps)
         except UserError as e:
             print(f"{name:<14}  does not run: {str(e).splitlines()[0]}")
             continue
