@@ -2,7 +2,7 @@
 
 import networkx as nx
 import numpy as np
-from hypothesis import assume, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from grammar_lang.algorithms.canon import canonical_key
@@ -118,12 +118,22 @@ RING_LEN = (3, 2)       # two primitives: one with three slots, one with two
 def glued_graphs(draw):
     """A connected graph of primitive instances: labels, and glued slot pairs (v, i, w, j)."""
     labels = draw(st.lists(st.integers(0, len(RING_LEN) - 1), min_size=1, max_size=6))
-    slots = [(v, i) for v, p in enumerate(labels) for i in range(RING_LEN[p])]
-    order = draw(st.permutations(slots))
-    pairs = draw(st.integers(0, len(order) // 2))
-    edges = tuple(sorted(tuple(min(a, b)) + tuple(max(a, b))
-                         for a, b in zip(order[0:2 * pairs:2], order[1:2 * pairs:2])))
-    assume(len(glued_components(range(len(labels)), edges)) == 1)
+    # A spanning tree first, so every draw is connected (filtering disconnected ones out
+    # made Hypothesis give up now and then): each vertex glues one of its slots to a free
+    # slot of an earlier one. Every primitive has two slots or more, so one is always free.
+    free = [(0, i) for i in range(RING_LEN[labels[0]])]
+    pairs = []
+    for v in range(1, len(labels)):
+        mine = [(v, i) for i in range(RING_LEN[labels[v]])]
+        a = free.pop(draw(st.integers(0, len(free) - 1)))
+        b = mine.pop(draw(st.integers(0, len(mine) - 1)))
+        pairs.append((a, b))
+        free += mine
+    order = draw(st.permutations(free))
+    extra = draw(st.integers(0, len(order) // 2))
+    pairs += list(zip(order[0:2 * extra:2], order[1:2 * extra:2]))
+    edges = tuple(sorted(tuple(min(a, b)) + tuple(max(a, b)) for a, b in pairs))
+    assert len(glued_components(range(len(labels)), edges)) == 1
     return tuple(labels), edges
 
 
