@@ -60,6 +60,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress display or summary")
 
 
+def size_target(steps: int | None, iterations: int | None) -> int:
+    """The default size cost's N: the steps asked for, else the iterations, else the
+    default number of steps."""
+    return steps if steps is not None else (iterations or DEFAULT_STEPS)
+
+
 def _seed(text: str) -> int:
     """A seed numpy takes: a whole number from 0 to 2**63 - 1 (argparse reports the error)."""
     try:
@@ -88,8 +94,7 @@ class Job:
 
     @property
     def size(self) -> int:
-        """The default size cost's N: the steps asked for, else the iterations."""
-        return self.steps if self.steps is not None else self.iterations
+        return size_target(self.steps, self.iterations)
 
 
 # What turns an example into a grammar: the compiler's `compile_example`, handed in by the
@@ -280,8 +285,7 @@ def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
         raise error("--cost, --direction, --extent and --iterations apply to angle-graph "
                     "rules, not to productions",
                     None, "productions run forward, one step at a time, by priority and weight")
-    parse_cost(args.cost, grammar.header.labels,
-               args.steps if args.steps is not None else args.iterations)
+    parse_cost(args.cost, grammar.header.labels, size_target(args.steps, args.iterations))
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")

@@ -28,7 +28,7 @@ from grammar_lang.rules import Grammar, Rule
 from ..engine.costs import parse_cost
 from ..engine.generate import Engine
 from ..engine.rewrite import DirectedRule
-from ..run_cmd import DEFAULT_STEPS, parse_limits, load_grammar, write_drawing
+from ..run_cmd import DEFAULT_STEPS, load_grammar, parse_limits, size_target, write_drawing
 
 PROMPT = "gg> "
 
@@ -55,9 +55,8 @@ class Options:
     @staticmethod
     def from_args(args: argparse.Namespace) -> "Options":
         both = None if args.direction is None else args.direction == "both"
-        size = args.steps if args.steps is not None else (args.iterations or DEFAULT_STEPS)
-        return Options(args.seed, size, args.cost, args.temperature,
-                       parse_limits(args.limit), both)
+        return Options(args.seed, size_target(args.steps, args.iterations), args.cost,
+                       args.temperature, parse_limits(args.limit), both)
 
 
 class Output:
