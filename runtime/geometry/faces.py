@@ -115,7 +115,9 @@ def _inside(p: np.ndarray, ring: np.ndarray) -> bool:
     x, y = p
     a, b = ring, np.roll(ring, -1, axis=0)
     crosses = (a[:, 1] > y) != (b[:, 1] > y)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # Horizontal edges divide by zero (never counted: `crosses` is false there); a hostile
+    # drawing's coordinates near the float limit overflow to ±inf, which still compares.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         xs = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
     return bool(np.count_nonzero(crosses & (x < xs)) % 2)
 
