@@ -378,7 +378,6 @@ class Solver:
         least = 0.0 if lab in self.host.side_labels or kn == kn or not t.least else t.least[lab]
         return max(l - tol, least), h + tol
 
-
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
         noise = rng.normal(0.0, 0.5 * self.scale * f, size=len(rd.base)).tolist()
