@@ -124,7 +124,8 @@ class Inference:
         self.structural: list[Rule] = []     # §5.4 rules that restructured the blocks
         self.pending: tuple[list[Graph], set[int], Rule] | None = None
         self.limits_hit: set[str] = set()
-        self._start(grouping.blocks(self.rings, enabled=group), original=None)
+        rigid = {k for k, lab in enumerate(example.labels) if example.cls(lab.cls).rigid}
+        self._start(grouping.blocks(self.rings, enabled=group, rigid=rigid), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None) -> None:
         """A fresh hierarchy glued from `blocks`; `original` are those that group primitives
