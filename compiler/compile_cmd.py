@@ -135,8 +135,9 @@ def run_verify(args) -> int:
         err.print(f"note: stopped at the {args.seconds:g} s time limit after {res.checked} of "
                   f"{res.enumerated} complete graphs found so far; this is not a complete check "
                   "(lower --max-primitives or raise --seconds)", markup=False)
+    goal = "∅ or the frame" if grammar.header.frame is not None else "∅"
     out.print(f"checked {res.checked} complete graphs with at most {args.max_primitives} "
-              f"primitives: {res.checked - len(res.failed)} reduce to ∅, "
+              f"primitives: {res.checked - len(res.failed)} reduce to {goal}, "
               f"{len(res.failed)} failed" + (f" ({res.stopped}: partial)" if res.stopped else ""),
               markup=False)
     for g in res.failed[:20]:

@@ -6,6 +6,10 @@ with at most N vertices, without duplicates. Each complete one must reduce to �
 rules destructively (§5.2). Components reduce independently, so the search is a memoised
 recursion over connected components: a component reduces when some rule application turns it
 into components that all reduce.
+
+A grammar drawn in a frame (Appendix A) starts from its frame, not from ∅: no rule creates or
+deletes the frame, so a component that holds it reduces when it becomes the frame itself (bare,
+or its start graph), which generation places before the first step.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
+from grammar_lang.frame import bare_sides
 from grammar_lang.rules import Grammar
 
 from .apply import apply, side_graph, wired_pairs
@@ -151,6 +156,9 @@ class Reducer:
             # No reduction may close R's wires into a loop with no vertex (see occurrence).
             self.rules.append((r, Pattern.of(side_graph(r.lhs), wired_pairs(r.rhs))))
         self.memo: dict[Key, bool] = {}
+        axiom = frame_graph(grammar)
+        if axiom is not None:
+            self.memo[canonical_key(axiom, self.ring_len)] = True
         self.budget = budget
         self.apply_budget = apply_budget     # rule applications per graph (growing rules)
         self.steps = 0
@@ -166,7 +174,7 @@ class Reducer:
         self.max_verts = 2 * len(g.verts) + 16
         ok = self._reduces(g)
         # A failure may only mean "every way down passed through a graph then in progress";
-        # such failures are not final, so only successes are remembered across graphs.
+        # such failures are not final, so only successes (and the frame) are remembered.
         self.memo = {k: v for k, v in self.memo.items() if v}
         return ok
 
@@ -205,6 +213,25 @@ class Reducer:
                 if all(self._reduces(p) for p in parts):
                     return True
         return False
+
+
+def frame_graph(grammar: Grammar) -> Graph | None:
+    """What generation starts from, as a graph: the frame's start graph, or its corners with
+    one border edge a side; None without a frame."""
+    h = grammar.header
+    if h.frame is None:
+        return None
+    if h.frame.start is not None:
+        return side_graph(h.frame.start)
+    n = len(h.frame.corners)
+    sides = bare_sides(h.frame, h.primitives, h.labels)
+    if any(s is None for s in sides):
+        return None       # a frame generation cannot place either (ggrun says why)
+    edges = []
+    for k, (i, j) in enumerate(sides):
+        a, b = sorted(((k, i), ((k + 1) % n, j)))
+        edges.append((a[0], a[1], b[0], b[1]))
+    return Graph(tuple(c.prim for c in h.frame.corners), tuple(sorted(edges)), ())
 
 
 def _open(g: Graph, ring_len) -> bool:

@@ -9,7 +9,7 @@ from hand_examples import RECTANGLE, make
 from compiler.cli import main
 from compiler.infer import compile_example
 from compiler.canon import canonical_key
-from compiler.verify import complete_graphs, verify
+from compiler.verify import complete_graphs, frame_graph, verify
 from grammar_lang.loader import load_example
 
 
@@ -130,3 +130,15 @@ def test_side_graph_keeps_every_slot_and_refuses_wires():
             g = side_graph(side)
             assert (g.verts, set(g.edges)) == (side.vertices, set(side.edges))
             assert bd.canonical(g.side().tokens(rings)) == bd.canonical(side.tokens(rings))
+
+
+def test_a_framed_grammar_reduces_to_its_frame():
+    # Generation starts from the frame and no rule creates or deletes it, so the frame is
+    # where a scene's reductions end (the paper's flowers are complete: nothing else fails).
+    ex = load_example(CORPUS.parent / "illustrations" / "flowers.gg")
+    grammar = compile_example(ex).grammar
+    frame = frame_graph(grammar)
+    assert frame is not None and frame.is_complete
+    assert len(frame.verts) == len(grammar.header.frame.corners)
+    res = verify(grammar, 8)
+    assert res.checked >= 1 and res.ok, res.failed
