@@ -121,9 +121,21 @@ class TurnAnalysis:
         # Moves that can follow each other both ways: the strong components of the move graph.
         _, self.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
                                             connection="strong")
-        self.low = self._floyd(w)                                  # −inf: a negative cycle
-        self.high = -self._floyd(np.where(np.isfinite(w), -w, INF))  # +inf: a positive cycle
+        self.low = self._by_component(w)                               # −inf: a negative cycle
+        self.high = -self._by_component(np.where(np.isfinite(w), -w, INF))  # +inf: positive
         self._solved = True
+
+    def _by_component(self, w: np.ndarray) -> np.ndarray:
+        """Shortest walks between moves of one strong component (the only ones `dead_end`
+        reads): a walk between two of its moves never leaves it, so each component is solved
+        on its own, in (size)³ instead of (all moves)³."""
+        d = np.full_like(w, INF)
+        order = np.argsort(self.comp, kind="stable")
+        cuts = np.flatnonzero(np.diff(self.comp[order])) + 1
+        for idx in np.split(order, cuts):
+            block = np.ix_(idx, idx)
+            d[block] = self._floyd(w[block])
+        return d
 
     @staticmethod
     def _floyd(w: np.ndarray) -> np.ndarray:
@@ -131,7 +143,7 @@ class TurnAnalysis:
         # The empty walk: the move that leaves along h_{k+1} may itself land on h_k.
         np.fill_diagonal(d, np.minimum(np.diag(d), 0.0))
         for k in range(len(d)):
-            d = np.minimum(d, d[:, k:k + 1] + d[k:k + 1, :])
+            np.minimum(d, d[:, k:k + 1] + d[k:k + 1, :], out=d)
         neg = np.diag(d) < 0
         if neg.any():
             # A walk that can pass through a negative cycle can be made as low as we like.
