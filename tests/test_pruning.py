@@ -76,3 +76,26 @@ def test_the_square_closes_and_its_spirals_are_dead_ends():
     assert any(len(g.verts) >= 5 for g in chains)
     for g in chains:
         assert analysis.dead_end(g) == (len(g.verts) >= 5)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 14), st.data())
+def test_shortest_walks_per_component_equal_the_whole_graphs(n, data):
+    # `dead_end` reads walks between moves of one strong component only, and those never
+    # leave it: solving each component alone must give the whole graph's answer there,
+    # negative and positive cycles included.
+    import numpy as np
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+    from compiler.pruning import INF
+    cells = data.draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1),
+                                         st.integers(-2, 2)), max_size=3 * n))
+    w = np.full((n, n), INF)
+    for a, b, t in cells:
+        w[a, b] = t
+    ta = TurnAnalysis.__new__(TurnAnalysis)
+    _, ta.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
+                                      connection="strong")
+    whole, parts = TurnAnalysis._floyd(w), ta._by_component(w)
+    same = ta.comp[:, None] == ta.comp[None, :]
+    assert np.array_equal(whole[same], parts[same])
