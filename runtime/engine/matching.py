@@ -221,7 +221,9 @@ def _centroid(host: Host, placed: dict) -> tuple[float, float]:
 def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
     cx, cy = _centroid(host, placed)
     pos = host.pos
-    return sorted(cands, key=lambda h: ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h))
+    # Decorated: the same (distance, id) order as a key function, without a call per vertex.
+    return [h for _, h in sorted([((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h)
+                                  for h in cands])]
 
 
 def _comp_candidates_any(host: Host, near: dict, ordered: bool = True) -> list[int]:

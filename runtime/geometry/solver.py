@@ -473,7 +473,7 @@ class Solver:
                 self._fail(Rejection.COINCIDENT)
                 return False
             for p2 in pts[k + 1:]:
-                if _dist(p, p2) < clr:
+                if ((p[0] - p2[0]) ** 2 + (p[1] - p2[1]) ** 2) ** 0.5 < clr:     # _dist, inline
                     self._fail(Rejection.COINCIDENT)
                     return False
         segs = []
