@@ -56,6 +56,7 @@ SHRINK = 0.75
 # New edges are drawn within ±50 % of their label's typical length in the example (stretched as
 # their neighbourhood is), or of the local scale where the typical length is not known.
 SPREAD = 0.5
+_LOW, _HIGH = 1.0 - SPREAD, 1.0 + SPREAD
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
@@ -227,15 +228,14 @@ class Solver:
     def _edges(self, free: list[int]) -> list[tuple]:
         """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
-        edges, seen = [], set()
+        edges, seen = [], set()       # the slots of the edges listed
         for v in free:
             pv = self.prim(v)
-            for i, (w, j) in self.adjacency(v):
-                key = min((v, i), (w, j))
-                if key in seen:
+            for i, s in self.adjacency(v):
+                if (v, i) in seen:
                     continue
-                seen.add(key)
-                edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+                seen.add(s)
+                edges.append((v, i, *s, t.direction[pv][i], t.label[pv][i]))
         fs = set(free)
         for (v, i), (w, j) in self.bridges:
             if v not in fs and w not in fs:
@@ -556,14 +556,19 @@ class _Round:
         when that misses it; when a shrunk range falls below the class, its shortest length."""
         r = self._ranges.get(f)
         if r is None:
-            los, his = [], []
+            los, his, widths = [], [], []
+            # Asked for most samples (each failure changes f): max and min written out, as
+            # the builtins decide them (a later argument wins only when strictly beyond).
             for lo, hi, c in zip(self.lo, self.hi, self.centre):
-                a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
+                a, bb = _LOW * c * f, _HIGH * c * f
+                a = a if a > lo else lo
+                bb = bb if bb < hi else hi
                 if a > bb:
                     a, bb = (lo, hi) if f == 1.0 or hi < a else (lo, lo)
                 los.append(a)
                 his.append(bb)
-            r = self._ranges[f] = (los, his, [bb - a for a, bb in zip(los, his)])
+                widths.append(bb - a)
+            r = self._ranges[f] = (los, his, widths)
         return r
 
     def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:
