@@ -170,9 +170,12 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
     if placed:
         # Beside parts already matched, look for the wire nearby only: the vertices the grid
         # finds there, by primitive (not a scan of the primitive's whole index).
-        by_prim: dict[int, list[int]] = {}
+        by_prim: dict[int, list[int]] = {p: [] for p, _ in pattern.wire_slots[wi]}
+        hp = host.prim
         for h in _comp_candidates_any(host, placed, False):
-            by_prim.setdefault(host.prim[h], []).append(h)
+            lst = by_prim.get(hp[h])
+            if lst is not None:
+                lst.append(h)
         lists = [(i, by_prim.get(p, ())) for p, i in pattern.wire_slots[wi]]
     total = sum(len(lst) for _, lst in lists)
     if total == 0:
