@@ -33,7 +33,7 @@ class Grid:
         # mostly empty cells, and a ray can cross all of its width).
         self._seg_cols: dict[int, list[int]] = {}
         self._pt_cells: dict[tuple[int, int], set] = {}
-        self._tag_cells: dict[tuple, set] = {}      # (tag, i, j) → the points with that tag
+        self._tag_cells: dict[Hashable, dict] = {}  # tag → cell → the points with that tag
         self._tag_of: dict[Hashable, Hashable] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
         self._pts: dict[Hashable, Point] = {}
@@ -116,7 +116,7 @@ class Grid:
         self._pt_cells.setdefault(k, set()).add(pid)
         if tag is not None:
             self._tag_of[pid] = tag
-            self._tag_cells.setdefault((tag, *k), set()).add(pid)
+            self._tag_cells.setdefault(tag, {}).setdefault(k, set()).add(pid)
         f = self.fine
         self._fine_cells.setdefault((math.floor(p[0] / f), math.floor(p[1] / f)), []).append(pid)
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
@@ -134,11 +134,11 @@ class Grid:
             del self._pt_cells[k]
         tag = self._tag_of.pop(pid, None)
         if tag is not None:
-            tk = (tag, *k)
-            cell = self._tag_cells[tk]
+            cells = self._tag_cells[tag]
+            cell = cells[k]
             cell.discard(pid)
             if not cell:
-                del self._tag_cells[tk]
+                del cells[k]
         f = self.fine
         fk = (math.floor(p[0] / f), math.floor(p[1] / f))
         fine = self._fine_cells[fk]
@@ -157,20 +157,15 @@ class Grid:
         (for callers that put them in an order of their own); with a `tag`, only the points
         filed under it (a splice's search box spans about 30 cells and many primitives)."""
         out = []
-        c = self.cell
+        cells, c = self._pt_cells if tag is None else self._tag_cells.get(tag, {}), self.cell
         i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
         j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
         # box_cells' order, without listing the cells.
-        if tag is None:
-            cells = self._pt_cells
-            keys = ((i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1))
-        else:
-            cells = self._tag_cells
-            keys = ((tag, i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1))
-        for k in keys:
-            s = cells.get(k)
-            if s:
-                out.extend(s)
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                s = cells.get((i, j))
+                if s:
+                    out.extend(s)
         return sorted(out) if ordered else out
 
     def point_within(self, p: Point, r: float, skip=()) -> bool:
