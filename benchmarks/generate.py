@@ -87,7 +87,9 @@ def main(argv=None) -> int:
                     help="profile the window at SIZE (cProfile, to stderr) in this process")
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)  # a child's run
     args = ap.parse_args(argv)
-    paths = args.examples or [str(CORPUS / n) for n in DEFAULT]
+    # A bare corpus name (curl.svg), as the usage above writes it, is looked up in the corpus.
+    paths = [p if Path(p).exists() or not (CORPUS / p).exists() else str(CORPUS / p)
+             for p in args.examples] or [str(CORPUS / n) for n in DEFAULT]
     sizes = [int(x) for x in args.sizes.split(",")]
     if args.one or args.profile:
         print(json.dumps(measure(paths[0], args.profile or sizes[0], args.window, args.seed,

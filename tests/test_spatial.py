@@ -89,3 +89,28 @@ def test_a_ray_across_a_wide_empty_drawing_still_finds_the_far_wall():
     g.add_point("w1", (-500.0, 1.0))
     g.add_point("here", (500.0, 0.0))
     assert g.ray_left((500.0, 0.0)) == ("wall", -500.0)
+
+
+@settings(max_examples=200, deadline=None)
+@given(pts=st.lists(st.tuples(point, st.integers(0, 2)), max_size=30),
+       moves=st.lists(st.tuples(st.integers(0, 29), point), max_size=10),
+       removed=st.sets(st.integers(0, 29)), box=st.tuples(point, point))
+def test_points_near_by_tag_is_the_untagged_answer_of_that_tag(pts, moves, removed, box):
+    """Points filed under a tag (the host's primitive), moved and removed as the host does."""
+    g = Grid(3.0, fine=0.5)
+    where = {}
+    for k, (p, tag) in enumerate(pts):
+        g.add_point(k, p, tag)
+        where[k] = tag
+    for k, p in moves:
+        if k in where:
+            g.remove_point(k)
+            g.add_point(k, p, where[k])
+    for k in removed & set(where):
+        g.remove_point(k)
+        del where[k]
+    (x0, y0), (x1, y1) = box
+    every = g.points_near(x0, y0, x1, y1)
+    for tag in range(3):
+        assert sorted(g.points_near(x0, y0, x1, y1, False, tag)) == \
+            [k for k in every if where[k] == tag]

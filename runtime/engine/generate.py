@@ -168,11 +168,13 @@ class Engine:
         # again on them.
         now = self.cost.value(self.stats())
         rise: dict[tuple, float] = {}       # cost change per count change, within this step
+        after: dict[tuple, Stats] = {}      # the counts each change predicts, for apply()
 
         def screen(move: DirectedRule) -> bool:
             key = self._delta(move)
             if key not in rise:
-                rise[key] = self.cost.value(self._stats_after(key)) - now
+                after[key] = self._stats_after(key)
+                rise[key] = self.cost.value(after[key]) - now
             return metropolis_accepts(rise[key], self.temperature, float(self.rng.random()))
 
         choice = self.schedule.choose(self.host, self.rng, self.applied_by_level, screen)
@@ -181,8 +183,9 @@ class Engine:
         level, move, match, refused = choice
         if refused:
             return Outcome(None, Rejection.COST, move, match)
+        key = self._delta(move)
         out = self.apply(move, match, priority=level.priority,
-                         screened=self._stats_after(self._delta(move)))
+                         screened=after.get(key) or self._stats_after(key))
         out.move, out.match = move, match
         return out
 

@@ -94,7 +94,7 @@ class Host:
         self._where[v] = len(lst)
         lst.append(v)
         self.prim_count[prim] += 1
-        self.grid.add_point(v, p)
+        self.grid.add_point(v, p, prim)
         self.n_open += len(self.link[v])
         self.next_id = max(self.next_id, v + 1)
         self._log(("add", v, prim, p))
@@ -148,7 +148,7 @@ class Host:
             self.grid.remove_segment(k)
         self.pos[v] = p
         self.grid.remove_point(v)
-        self.grid.add_point(v, p)
+        self.grid.add_point(v, p, self.prim[v])
         for k in keys:
             a, b = k, self.link[k[0]][k[1]]
             self.grid.add_segment(k, self.pos[a[0]], self.pos[b[0]])

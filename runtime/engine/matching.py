@@ -98,9 +98,7 @@ def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
         return host.by_prim[prim]
     # Later components of a splice: only vertices near the part already matched, nearest
     # first (the order is by distance and id, so the grid's order does not matter).
-    hp = host.prim
-    return _nearest_first(host, [h for h in _comp_candidates_any(host, near, False)
-                                 if hp[h] == prim], near)
+    return _nearest_first(host, _near(host, near, prim), near)
 
 
 class _Budget:
@@ -170,10 +168,8 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
     if placed:
         # Beside parts already matched, look for the wire nearby only: the vertices the grid
         # finds there, by primitive (not a scan of the primitive's whole index).
-        by_prim: dict[int, list[int]] = {}
-        for h in _comp_candidates_any(host, placed, False):
-            by_prim.setdefault(host.prim[h], []).append(h)
-        lists = [(i, by_prim.get(p, ())) for p, i in pattern.wire_slots[wi]]
+        by_prim = {p: _near(host, placed, p) for p, _ in pattern.wire_slots[wi]}
+        lists = [(i, by_prim[p]) for p, i in pattern.wire_slots[wi]]
     total = sum(len(lst) for _, lst in lists)
     if total == 0:
         return
@@ -221,14 +217,19 @@ def _centroid(host: Host, placed: dict) -> tuple[float, float]:
 def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
     cx, cy = _centroid(host, placed)
     pos = host.pos
-    return sorted(cands, key=lambda h: ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h))
+    # Decorated: the same (distance, id) order as a key function, without a call per vertex.
+    return [h for _, h in sorted([((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h)
+                                  for h in cands])]
 
 
-def _comp_candidates_any(host: Host, near: dict, ordered: bool = True) -> list[int]:
+def _near(host: Host, near: dict, prim: int) -> list[int]:
+    """The vertices of primitive `prim` within the splice radius of the box around the host
+    vertices `near` (the grid's cells: a superset), in no particular order."""
     xs = [host.pos[h][0] for h in near.values()]
     ys = [host.pos[h][1] for h in near.values()]
     r = SPLICE_RADIUS * host.t.unit
-    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, ordered)
+    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, False,
+                                 prim)
 
 
 def _match(pattern: Pattern, found) -> Match:

@@ -48,6 +48,20 @@ class Level:
     def inverse_weights(self) -> np.ndarray:
         return 1.0 / np.asarray(self.weights, dtype=float)
 
+    @functools.cached_property
+    def _allowed(self) -> dict:
+        return {}
+
+    def allowed(self, absent: np.ndarray) -> list[int]:
+        """The moves whose pattern needs no primitive of `absent` (host primitives with no
+        vertex), in move order; kept per set of absent primitives, which rarely changes."""
+        key = absent.tobytes()
+        ks = self._allowed.get(key)
+        if ks is None:
+            blocked = self.requires[:, absent].any(axis=1).tolist()
+            ks = self._allowed[key] = [k for k in range(len(self.moves)) if not blocked[k]]
+        return ks
+
 
 @dataclass(frozen=True)
 class Schedule:
@@ -150,12 +164,7 @@ class Schedule:
         # Sorted in Python: a level holds a few dozen moves, and Python's sort is stable as
         # numpy's "stable" argsort of -keys is, so ties keep the move order either way.
         keys = (rng.random(len(level.weights)) ** level.inverse_weights).tolist()
-        absent = host.prim_count == 0
-        ks = range(len(keys))
-        if absent.any():
-            blocked = level.requires[:, absent].any(axis=1).tolist()
-            ks = [k for k in ks if not blocked[k]]
-        return sorted(ks, key=keys.__getitem__, reverse=True)
+        return sorted(level.allowed(host.prim_count == 0), key=keys.__getitem__, reverse=True)
 
     def _draw(self, level: Level, ks: list[int], host: Host, rng: np.random.Generator,
               probes: int | None):

@@ -56,6 +56,7 @@ SHRINK = 0.75
 # New edges are drawn within ±50 % of their label's typical length in the example (stretched as
 # their neighbourhood is), or of the local scale where the typical length is not known.
 SPREAD = 0.5
+_LOW, _HIGH = 1.0 - SPREAD, 1.0 + SPREAD
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
@@ -89,6 +90,7 @@ class Solver:
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         self.clearance = host.t.clearance
         self._adjacency: dict[int, list] = {}
+        self._boxes: dict = {}           # host edge → its ends and box, see _host_box
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.unique = False
@@ -226,15 +228,14 @@ class Solver:
     def _edges(self, free: list[int]) -> list[tuple]:
         """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
-        edges, seen = [], set()
+        edges, seen = [], set()       # the slots of the edges listed
         for v in free:
             pv = self.prim(v)
-            for i, (w, j) in self.adjacency(v):
-                key = min((v, i), (w, j))
-                if key in seen:
+            for i, s in self.adjacency(v):
+                if (v, i) in seen:
                     continue
-                seen.add(key)
-                edges.append((v, i, w, j, t.direction[pv][i], t.label[pv][i]))
+                seen.add(s)
+                edges.append((v, i, *s, t.direction[pv][i], t.label[pv][i]))
         fs = set(free)
         for (v, i), (w, j) in self.bridges:
             if v not in fs and w not in fs:
@@ -258,7 +259,7 @@ class Solver:
             fact = self.cache.put(shape, _factorise(*shape))
         bl = _right_hand_side(shape[1], edges, host.pos)
         b = np.array(bl)
-        res = (b - fact.M @ (fact.Mp @ b)).tolist()
+        res = (b - fact.M.dot(fact.Mp.dot(b))).tolist()
         # As numpy's max(|·|, initial=0): a NaN anywhere makes the test false.
         worst = max(map(abs, res), default=0.0)
         if worst > 1e-7 * t.unit * (1.0 + max(map(abs, bl), default=0.0) / t.unit) \
@@ -269,7 +270,7 @@ class Solver:
         if not self.strict:
             return self._round(free, edges, fact, b)
         # Half the castle's rounds fail here: tested before the round's constants are made.
-        c = (fact.scale_len * (fact.Mp_len @ b)).tolist()
+        c = (fact.scale_len * fact.Mp_len.dot(b)).tolist()
         if self._fixed_out(edges, fact, c):
             return Rejection.LENGTH_FIXED
         return self._doomed(self._round(free, edges, fact, b), fact, c)
@@ -291,8 +292,8 @@ class Solver:
         (`c`: the lengths at a zero target)."""
         tol = 1e-7 * self.host.t.unit
         mid, half = self._target_box(rd)
-        centre = (fact.R @ mid).tolist()
-        spread = (fact.absR @ half).tolist()
+        centre = fact.R.dot(mid).tolist()
+        spread = fact.absR.dot(half).tolist()
         for e, (ce, sp) in enumerate(zip(centre, spread)):
             ce += c[e]
             top = ce + sp
@@ -396,7 +397,8 @@ class Solver:
     def _sample(self, free, rd: "_Round", f: float = 1.0) -> dict[int, Point] | None:
         t = self.host.t
         target = self._targets(rd, f)
-        x = target + rd.scale * (rd.Mp @ (rd.b - rd.A @ target))
+        # ndarray.dot: the same BLAS product as @, without the ufunc machinery (half the cost).
+        x = target + rd.scale * rd.Mp.dot(rd.b - rd.A.dot(target))
         nF = len(free)
         if rd.tiles and self.strict:
             x = self._snap_tiles(x, nF, rd)
@@ -439,8 +441,8 @@ class Solver:
         A2, A2p = rd.pinned_system(nF)
         b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
-        y = x + A2p @ (b2 - A2 @ x)
-        if float(np.abs(A2 @ y - b2).max()) > 1e-7 * self.host.t.unit * (1 + float(np.abs(b2).max()) / self.host.t.unit):
+        y = x + A2p.dot(b2 - A2.dot(x))
+        if float(np.abs(A2.dot(y) - b2).max()) > 1e-7 * self.host.t.unit * (1 + float(np.abs(b2).max()) / self.host.t.unit):
             return None
         return y
 
@@ -461,7 +463,7 @@ class Solver:
         # Each test only asks whether some pair is too close, so the order in which pairs are
         # tried does not matter: the first one found decides.
         host = self.host
-        hpos, link, grid = host.pos, host.link, host.grid
+        hpos, grid = host.pos, host.grid
         clr = self.clearance
         gone, ignore = rd.gone, rd.ignore
         # Vertices: no two may coincide.
@@ -471,7 +473,7 @@ class Solver:
                 self._fail(Rejection.COINCIDENT)
                 return False
             for p2 in pts[k + 1:]:
-                if _dist(p, p2) < clr:
+                if ((p[0] - p2[0]) ** 2 + (p[1] - p2[1]) ** 2) ** 0.5 < clr:     # _dist, inline
                     self._fail(Rejection.COINCIDENT)
                     return False
         segs = []
@@ -480,20 +482,21 @@ class Solver:
             segs.append((v, w, hpos[v] if a is None else a, hpos[w] if c is None else c))
         # Edges: no crossing or touching except at a shared end. The boxes are compared here,
         # in seg_near's own terms, since most candidates are far.
+        boxes = self._boxes
         for k, (v, w, a, c) in enumerate(segs):
             lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
             ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
-            for key in grid.segments_near(lx - clr, ly - clr, hx + clr, hy + clr):
+            lx, ly = lx - clr, ly - clr
+            for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
                 if key in ignore:
                     continue
-                x = key[0]
-                y = link[x][key[1]][0]
+                box = boxes.get(key)
+                if box is None:
+                    box = boxes[key] = self._host_box(key)
+                x, y, qhx, qhy, qlx, qly, p, q = box
                 if x == v or x == w or y == v or y == w:
                     continue
-                p, q = hpos[x], hpos[y]
-                qlx, qhx = (p[0], q[0]) if p[0] < q[0] else (q[0], p[0])
-                qly, qhy = (p[1], q[1]) if p[1] < q[1] else (q[1], p[1])
-                if lx - clr > qhx or qlx - clr > hx or ly - clr > qhy or qly - clr > hy:
+                if lx > qhx or qlx > hx or ly > qhy or qly > hy:
                     continue
                 if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
@@ -505,6 +508,18 @@ class Solver:
                     self._fail(Rejection.CROSSING)
                     return False
         return True
+
+    def _host_box(self, key) -> tuple:
+        """A host edge's ends (ids), its box (low ends less the clearance) and its end points.
+        Kept for the solver's life, as the adjacency is: the same neighbours are tested by
+        every sample (curl: about 14 candidates per edge, 80 per step)."""
+        host, clr = self.host, self.clearance
+        x = key[0]
+        y = host.link[x][key[1]][0]
+        p, q = host.pos[x], host.pos[y]
+        qlx, qhx = (p[0], q[0]) if p[0] < q[0] else (q[0], p[0])
+        qly, qhy = (p[1], q[1]) if p[1] < q[1] else (q[1], p[1])
+        return x, y, qhx, qhy, qlx - clr, qly - clr, p, q
 
 
 @dataclass
@@ -541,14 +556,19 @@ class _Round:
         when that misses it; when a shrunk range falls below the class, its shortest length."""
         r = self._ranges.get(f)
         if r is None:
-            los, his = [], []
+            los, his, widths = [], [], []
+            # Asked for most samples (each failure changes f): max and min written out, as
+            # the builtins decide them (a later argument wins only when strictly beyond).
             for lo, hi, c in zip(self.lo, self.hi, self.centre):
-                a, bb = max(lo, (1.0 - SPREAD) * c * f), min(hi, (1.0 + SPREAD) * c * f)
+                a, bb = _LOW * c * f, _HIGH * c * f
+                a = a if a > lo else lo
+                bb = bb if bb < hi else hi
                 if a > bb:
                     a, bb = (lo, hi) if f == 1.0 or hi < a else (lo, lo)
                 los.append(a)
                 his.append(bb)
-            r = self._ranges[f] = (los, his, [bb - a for a, bb in zip(los, his)])
+                widths.append(bb - a)
+            r = self._ranges[f] = (los, his, widths)
         return r
 
     def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:

@@ -33,6 +33,8 @@ class Grid:
         # mostly empty cells, and a ray can cross all of its width).
         self._seg_cols: dict[int, list[int]] = {}
         self._pt_cells: dict[tuple[int, int], set] = {}
+        self._tag_cells: dict[Hashable, dict] = {}  # tag → cell → the points with that tag
+        self._tag_of: dict[Hashable, Hashable] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
         self._pts: dict[Hashable, Point] = {}
         # Occupied columns and rows (point counts), for bounds and ray casts.
@@ -106,10 +108,15 @@ class Grid:
         return out
 
     # --- points -----------------------------------------------------------------------------
-    def add_point(self, pid: Hashable, p: Point) -> None:
+    def add_point(self, pid: Hashable, p: Point, tag: Hashable = None) -> None:
+        """File point `pid` at `p`; with a `tag` (the host's: its primitive) also under that
+        tag, for points_near(tag=...)."""
         self._pts[pid] = p
         k = self.key(p)
         self._pt_cells.setdefault(k, set()).add(pid)
+        if tag is not None:
+            self._tag_of[pid] = tag
+            self._tag_cells.setdefault(tag, {}).setdefault(k, set()).add(pid)
         f = self.fine
         self._fine_cells.setdefault((math.floor(p[0] / f), math.floor(p[1] / f)), []).append(pid)
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
@@ -125,6 +132,13 @@ class Grid:
         cell.discard(pid)
         if not cell:
             del self._pt_cells[k]
+        tag = self._tag_of.pop(pid, None)
+        if tag is not None:
+            cells = self._tag_cells[tag]
+            cell = cells[k]
+            cell.discard(pid)
+            if not cell:
+                del cells[k]
         f = self.fine
         fk = (math.floor(p[0] / f), math.floor(p[1] / f))
         fine = self._fine_cells[fk]
@@ -138,15 +152,20 @@ class Grid:
                 self._box = None          # a column or row emptied: the bounds may shrink
 
     def points_near(self, x0: float, y0: float, x1: float, y1: float,
-                    ordered: bool = True) -> list:
+                    ordered: bool = True, tag: Hashable = None) -> list:
         """Ids of points filed in any cell the box touches, sorted unless `ordered` is False
-        (for callers that put them in an order of their own)."""
+        (for callers that put them in an order of their own); with a `tag`, only the points
+        filed under it (a splice's search box spans about 30 cells and many primitives)."""
         out = []
-        cells = self._pt_cells
-        for k in self.box_cells(x0, y0, x1, y1):
-            s = cells.get(k)
-            if s:
-                out.extend(s)
+        cells, c = self._pt_cells if tag is None else self._tag_cells.get(tag, {}), self.cell
+        i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
+        j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
+        # box_cells' order, without listing the cells.
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                s = cells.get((i, j))
+                if s:
+                    out.extend(s)
         return sorted(out) if ordered else out
 
     def point_within(self, p: Point, r: float, skip=()) -> bool:

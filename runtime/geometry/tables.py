@@ -37,6 +37,9 @@ class Tables(Vocabular):
     # Per edge label: the shortest a drawn edge may be (0: no floor), see `least_lengths`.
     least: tuple[float, ...] = ()
 
+    # Read through Vocabular's property on every test of a step (27 reads per step on curl).
+    unit = functools.cached_property(lambda self: self.vocabulary.unit)
+
     @functools.cached_property
     def clearance(self) -> float:
         """How far apart distinct vertices and edges must stay: a fiftieth of the unit, or a
@@ -45,7 +48,7 @@ class Tables(Vocabular):
         c = min(0.02 * u, 0.25 * min((l[0] for l in self.lengths), default=u))
         return max(c, 1e-9 * u)
 
-    @property
+    @functools.cached_property
     def one_face_label(self) -> bool:
         """Every face has the same label, so no placement can put a face in the wrong place."""
         return all(l == self.exterior and r == self.exterior for l, r in self.label_faces)
