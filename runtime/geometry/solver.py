@@ -424,9 +424,10 @@ class Solver:
 
     def _bounds(self, lab: int, kn: float) -> tuple[float, float]:
         """A length's class range widened by the tolerance. A drawn edge also keeps its
-        proportion (Tables.least); a kept one (`kn`: its length now) is exempt, though the
-        projection may shorten it when an end moves: held to the floor too, the corpus
-        letter a's drawings lost half their variety. A frame's side has no floor."""
+        proportion (Tables.least); a kept one (`kn`: its length now) only as far as it keeps
+        it already: the projection may shorten it when an end moves, down to the floor or to
+        its present length when that is shorter (held to the floor outright, the corpus
+        letter a's drawings lost half their variety). A frame's side has no floor."""
         t = self.host.t
         tol = 1e-7 * t.unit
         l, h = t.lengths[lab][:2]
