@@ -114,3 +114,66 @@ def test_the_sturdier_pseudo_inverse_agrees_with_numpys(rows, cols, seed):
     finally:
         np.linalg.pinv = real
     assert np.allclose(got, want, atol=1e-9)
+
+
+def _lengths(host) -> dict[tuple[int, int], float]:
+    return {(v, w): math.dist(host.pos[v], host.pos[w]) for v, _, w, _ in host.edges()}
+
+
+@pytest.mark.parametrize("name", ["castle", "space-station"])
+def test_no_step_squeezes_an_old_edge_below_its_floor(name):
+    """New lengths are stiffer than the old drawing (solver.DRAWN_LENGTH), so freed old
+    vertices give way; an old edge may then be shortened, but never below its floor unless it
+    was shorter already (it squeezed the castle's old towers into slivers)."""
+    _, grammar = _compiled(str(ILLUSTRATIONS / f"{name}.gg"))
+    labels = grammar.header.labels
+    eng = Engine(grammar, seed=80)
+    for _ in range(400):
+        before = _lengths(eng.host)
+        rec = eng.step().applied
+        if rec is None or not rec.moved:
+            continue
+        moved = set(rec.moved)
+        for (v, w), d in _lengths(eng.host).items():
+            if (v, w) not in before or not moved & {v, w}:
+                continue
+            lab = eng.host.t.label[eng.host.prim[v]][0]
+            for i, s in enumerate(eng.host.link[v]):
+                if s is not None and s[0] == w:
+                    lab = eng.host.t.label[eng.host.prim[v]][i]
+            ty, least = labels[lab].typical, labels[lab].shortest
+            if ty is None or lab in eng.host.side_labels:
+                continue
+            floor = min(PROPORTION * ty, least) - 1e-6 * eng.host.t.unit
+            assert d >= floor or d >= before[(v, w)] - 1e-6 * eng.host.t.unit, (v, w, d, floor)
+
+
+def test_a_failed_length_frees_the_vertices_that_hold_it():
+    """When a round fails because of one edge's length, the next round frees the held
+    vertices nearest that edge (all of one breadth-first layer), not a random neighbour."""
+    import numpy as np
+    from runtime.engine.rewrite import plan
+    from runtime.geometry.rejections import Rejection
+    from runtime.geometry.solver import Solver
+    _, grammar = _compiled(str(ILLUSTRATIONS / "castle.gg"))
+    eng = Engine(grammar, seed=80)
+    eng.run(None, iterations=300)
+    host, seen = eng.host, 0
+    for move in eng.moves():
+        for match in eng.matches(move, 2):
+            change = plan(host, move, match, eng.schedule.spo)
+            if not host.pinned.isdisjoint(change.removed):
+                continue
+            solver = Solver(host, change, np.random.default_rng(0), lambda: (0.0, 0.0))
+            free = [v for v, _ in change.new]
+            if solver._system(free) not in (Rejection.LENGTH_FIXED, Rejection.LENGTH_RANGE):
+                continue
+            (a, b), = solver.culprits
+            want = set(solver._nearest_held((a, b), set(free)))
+            assert solver._free_one(free)
+            assert want and want <= set(free) - {v for v, _ in change.new}
+            # The layer nearest the edge: its own ends when held, else their neighbours.
+            ends = {a, b} - {v for v, _ in change.new}
+            assert want == ends - host.pinned or not ends - host.pinned
+            seen += 1
+    assert seen >= 5

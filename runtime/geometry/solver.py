@@ -18,7 +18,9 @@ old parts makes the next one SHRINK times smaller (target lengths and scatter), 
 change squeezed between old vertices finds room; any other failure (say, an edge of a triangle
 below its class's minimum) makes it larger again, up to the local scale. When the system is
 inconsistent (over-constrained), fixes some length outside its class whatever the sample, or
-J samples fail, one more vertex next to a free one is freed: I rounds.
+J samples fail, more old vertices are freed: those nearest the edge whose length failed, else
+one next to a free one: I rounds. New edges' drawn lengths are stiffer than the old drawing
+(DRAWN_LENGTH), so that freed old vertices give way to a new part instead of squashing it.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
@@ -52,6 +54,14 @@ POS_SCALE = np.array([OLD_POS, NEW_POS, LOOSE_POS])
 # A frame's sides are as long as the frame: a structure standing on one takes what it needs
 # and the stretches of bare side beside it take the rest, so their lengths are cheapest.
 FRAME_SIDE = 100.0
+# A new edge's drawn length is stiffer than the old drawing: the projection lets old vertices
+# (once freed) give way rather than squash the new part. At LENGTH the misfit of a part
+# squeezed between old ones was shared equally, so its new edges came out far shorter than
+# drawn, often negative: on the paper's castle most rounds could not pass ("length out of
+# range", "edge length"). 0.1: ten times stiffer.
+DRAWN_LENGTH = 0.1
+# How many layers out from a failed edge `_free_one` looks for vertices to free.
+HOPS = 4
 SHRINK = 0.75
 # New edges are drawn within ±50 % of their label's typical length in the example (stretched as
 # their neighbourhood is), or of the local scale where the typical length is not known.
@@ -93,6 +103,7 @@ class Solver:
         self._boxes: dict = {}           # host edge → its ends and box, see _host_box
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
+        self.culprits: dict[tuple[int, int], int] = {}
         self.unique = False
         # New edges between two old vertices (a wire replaced): constraints from the start.
         self.bridges = [(a, b) for a, b in change.glue
@@ -173,6 +184,11 @@ class Solver:
         self.failures[why] = self.failures.get(why, 0) + 1
         self.last_failure = why
 
+    def _blame(self, edge) -> None:
+        """Count a failed length against its edge: the next round frees what holds it."""
+        key = (edge[0], edge[2])
+        self.culprits[key] = self.culprits.get(key, 0) + 1
+
     def placements(self) -> Iterator[Placement]:
         """Candidate placements that pass every local test, at most I·J of them."""
         free = [v for v, _ in self.change.new]
@@ -198,14 +214,49 @@ class Solver:
                 return
 
     def _free_one(self, free: list[int]) -> bool:
+        """Free more old vertices for the next round. When a length failed (fixed or doomed
+        out of its class, or broken by the round's samples), the held vertices nearest that
+        edge are freed, all of them: on the castle a new wall top fixed at a negative length
+        needs the tower side beside it to slide, and a tower side split by a merlon needs both
+        top corners to rise; a random neighbour (the paper's choice) rarely is the one, and in
+        a drawing of straight lines one vertex freed alone is still held by its other edges.
+        Otherwise (over-constrained, crossings), one random neighbour, as the paper does."""
         fs = set(free)
-        near = {w for v in free for _, (w, _) in self.adjacency(v)}
-        near.update(s[0] for pair in self.bridges for s in pair)
-        cands = sorted(near - fs - self.host.pinned)
-        if not cands:
-            return False
-        free.extend(self._rigid_part(cands[int(self.rng.integers(len(cands)))], fs))
+        blamed = max(sorted(self.culprits.items()), key=lambda kv: kv[1])[0] \
+            if self.culprits else None
+        self.culprits = {}
+        want = self._nearest_held(blamed, fs) if blamed is not None else []
+        if not want:
+            near = {w for v in free for _, (w, _) in self.adjacency(v)}
+            near.update(s[0] for pair in self.bridges for s in pair)
+            cands = sorted(near - fs - self.host.pinned)
+            if not cands:
+                return False
+            want = [cands[int(self.rng.integers(len(cands)))]]
+        for v in want:
+            if v not in fs:
+                part = self._rigid_part(v, fs)
+                free.extend(part)
+                fs.update(part)
         return True
+
+    def _nearest_held(self, ends: tuple[int, int], free: set[int]) -> list[int]:
+        """The vertices not yet free (nor pinned) nearest the edge `ends`, by breadth-first
+        layers out from its two ends, at most HOPS layers away: those that hold its length."""
+        pinned = self.host.pinned
+        layer, seen = sorted(set(ends)), set(ends)
+        for _ in range(HOPS):
+            held = [v for v in layer if v not in free and v not in pinned]
+            if held:
+                return held
+            nxt = []
+            for v in layer:
+                for _, (w, _) in self.adjacency(v):
+                    if w not in seen:
+                        seen.add(w)
+                        nxt.append(w)
+            layer = sorted(nxt)
+        return []
 
     def _rigid_part(self, v: int, free: set[int]) -> list[int]:
         """`v` and the old vertices joined to it by edges of fixed length (a rigid part):
@@ -253,7 +304,9 @@ class Solver:
                        for v in free),
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
                         t.lengths[lab][2] if self.strict else None,
-                        lab in host.side_labels) for v, i, w, j, d, lab in edges))
+                        lab in host.side_labels,
+                        not (v in host.prim and host.link[v][i] == (w, j)))
+                       for v, i, w, j, d, lab in edges))
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
@@ -282,6 +335,7 @@ class Solver:
         for e in fact.fixed_idx:
             lt, ht = self._bounds(edges[e][-1], self._known(*edges[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
+                self._blame(edges[e])
                 return True
         return False
 
@@ -298,6 +352,7 @@ class Solver:
             ce += c[e]
             top = ce + sp
             if top <= tol or top < rd.lo_tol[e] or ce - sp > rd.hi_tol[e]:
+                self._blame(rd.edges[e])
                 return Rejection.LENGTH_RANGE
         return rd
 
@@ -370,13 +425,19 @@ class Solver:
 
     def _bounds(self, lab: int, kn: float) -> tuple[float, float]:
         """A length's class range widened by the tolerance. A drawn edge also keeps its
-        proportion (Tables.least); a kept one (`kn`: its length now) is exempt, though the
-        projection may shorten it when an end moves: held to the floor too, the corpus
-        letter a's drawings lost half their variety. A frame's side has no floor."""
+        proportion (Tables.least); a kept one (`kn`: its length now) only as far as it keeps
+        it already: the projection may shorten it when an end moves, down to the floor or to
+        its present length when that is shorter (held to the floor outright, the corpus
+        letter a's drawings lost half their variety). A frame's side has no floor."""
         t = self.host.t
         tol = 1e-7 * t.unit
         l, h = t.lengths[lab][:2]
-        least = 0.0 if lab in self.host.side_labels or kn == kn or not t.least else t.least[lab]
+        if lab in self.host.side_labels or not t.least:
+            return l - tol, h + tol
+        # A kept edge is held to the floor only as far as it already reaches it: with new
+        # lengths stiff (DRAWN_LENGTH) the projection shortens old edges more, and unchecked
+        # it squeezed the castle's old towers into slivers.
+        least = t.least[lab] if kn != kn else min(t.least[lab], kn) - tol
         return max(l - tol, least), h + tol
 
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
@@ -413,6 +474,10 @@ class Solver:
         else:
             ok = all(s > tol for s in lengths)
         if not ok:
+            for e, (s, lt, ht) in enumerate(zip(lengths, rd.lo_tol, rd.hi_tol)):
+                if not (s > tol and lt <= s <= ht):
+                    self._blame(rd.edges[e])
+                    break
             self._fail(Rejection.EDGE_LENGTH)
             return None
         pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
@@ -640,11 +705,12 @@ def _pinv(M: np.ndarray, rcond: float = 1e-10) -> np.ndarray:
 def _factorise(kind: tuple[int, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
     p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
-    the shape is (free index of v or −1, of w or −1, direction, fixed length, frame side)."""
+    the shape is (free index of v or −1, of w or −1, direction, fixed length, frame side,
+    drawn: new, not an existing edge kept)."""
     nF, nE = len(kind), len(edges)
-    fixed = [e for e, (_, _, _, f, _) in enumerate(edges) if f is not None]
+    fixed = [e for e, (_, _, _, f, _, _) in enumerate(edges) if f is not None]
     A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
-    for e, (iv, iw, d, _, _) in enumerate(edges):
+    for e, (iv, iw, d, _, _, _) in enumerate(edges):
         for c in (0, 1):
             if iw >= 0:
                 A[2 * e + c, 2 * iw + c] += 1.0
@@ -654,7 +720,8 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
     scale = np.empty(2 * nF + nE)
     scale[:2 * nF] = np.repeat(POS_SCALE[np.asarray(kind, dtype=int)], 2)
-    scale[2 * nF:] = [FRAME_SIDE if side else LENGTH for *_, side in edges]
+    scale[2 * nF:] = [FRAME_SIDE if side else DRAWN_LENGTH if drawn else LENGTH
+                      for *_, side, drawn in edges]
     M = A * scale
     Mp = _pinv(M)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
@@ -668,7 +735,7 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
 def _right_hand_side(shape_edges, edges, pos) -> list[float]:
     """b: the fixed ends' positions, then the fixed lengths."""
     b = []
-    for (iv, iw, _, _, _), (v, _, w, _, _, _) in zip(shape_edges, edges):
+    for (iv, iw, _, _, _, _), (v, _, w, _, _, _) in zip(shape_edges, edges):
         bx = by = 0.0
         if iw < 0:
             pw = pos[w]
@@ -679,7 +746,7 @@ def _right_hand_side(shape_edges, edges, pos) -> list[float]:
             bx += pv[0]
             by += pv[1]
         b += (bx, by)
-    b.extend(f for _, _, _, f, _ in shape_edges if f is not None)
+    b.extend(f for _, _, _, f, _, _ in shape_edges if f is not None)
     return b
 
 
