@@ -285,7 +285,8 @@ def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
         raise error("--cost, --direction, --extent and --iterations apply to angle-graph "
                     "rules, not to productions",
                     None, "productions run forward, one step at a time, by priority and weight")
-    parse_cost(args.cost, grammar.header.labels, size_target(args.steps, args.iterations))
+    parse_cost(args.cost, grammar.header.labels, size_target(args.steps, args.iterations),
+               grammar.header)
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")

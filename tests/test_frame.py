@@ -258,6 +258,19 @@ def test_costs_take_the_names_of_the_example():
         parse_cost("label:windo", labels, 10)
 
 
+@pytest.mark.parametrize("cost", ["scene", "scene:300"])
+def test_the_scene_cost_can_be_asked_for_by_name(cost, tmp_path, capsys):
+    # The default in a frame, named explicitly: ggrun checks it against the grammar's frame.
+    from report.ggrun import main
+    out = tmp_path / "c.json"
+    assert main([str(EXAMPLES / "castle-scene.gg"), "--steps", "5", "--seed", "1",
+                 "--cost", cost, "--out", str(out), "--quiet"]) == 0
+    assert out.exists()
+    assert main([str(EXAMPLES / "tree.gg"), "--steps", "5", "--cost", cost, "--out",
+                 str(tmp_path / "t.json"), "--quiet"]) == 2
+    assert "needs a grammar with a frame" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("t", ["nan", "inf", "-1"])
 def test_a_temperature_that_makes_no_sense_is_refused(t, capsys):
     from report.ggrun import main
