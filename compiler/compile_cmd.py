@@ -144,4 +144,20 @@ def run_verify(args) -> int:
         prims = ", ".join(names[p] for p in g.verts)
         out.print(f"  failed: {len(g.verts)} vertices [{prims}], edges {list(g.edges)}",
                   markup=False)
+    _explain_unreached(grammar, res.failed, err)
     return 0 if res.ok else 1
+
+
+def _explain_unreached(grammar, failed, err) -> None:
+    """A grammar whose frame starts from its start graph cannot draw a scene that holds the
+    frame in another way (one strip of land, not two): say so, since no rule is wrong."""
+    frame = grammar.header.frame
+    if frame is None or frame.start is None:
+        return
+    corners = {c.prim for c in frame.corners}
+    held = sum(1 for g in failed if corners & set(g.verts))
+    if held:
+        err.print(f"note: {held} failed graph(s) hold the frame but are not its start graph "
+                  f"({len(frame.start.vertices)} vertices); generation starts from the start "
+                  "graph and no rule touches the frame's corners, so such scenes are locally "
+                  "similar but cannot be drawn", markup=False)

@@ -142,3 +142,16 @@ def test_a_framed_grammar_reduces_to_its_frame():
     assert len(frame.verts) == len(grammar.header.frame.corners)
     res = verify(grammar, 8)
     assert res.checked >= 1 and res.ok, res.failed
+
+
+def test_verify_says_why_a_frame_start_grammar_fails_smaller_scenes(tmp_path, capsys):
+    # The village starts from its frame's start graph (two strips of land): a frame with one
+    # strip is locally similar but unreachable, and verify says so instead of leaving it bare.
+    from conftest import ROOT
+    ggr = tmp_path / "village.ggr"
+    assert main(["compile", str(ROOT / "examples" / "village.gg"), "-o", str(ggr)]) == 0
+    capsys.readouterr()
+    assert main(["verify", str(ggr), "--max-primitives", "6"]) == 1
+    captured = capsys.readouterr()
+    assert "reduce to ∅ or the frame" in captured.out
+    assert "hold the frame but are not its start graph" in captured.err
