@@ -305,7 +305,7 @@ class Solver:
                  tuple((idx.get(v, -1), idx.get(w, -1), d,
                         t.lengths[lab][2] if self.strict else None,
                         lab in host.side_labels,
-                        not (v in host.prim and host.link[v][i] == (w, j)))
+                        not self._kept(v, i, w, j))
                        for v, i, w, j, d, lab in edges))
         fact = self.cache.get(shape)
         if fact is None:
@@ -411,6 +411,11 @@ class Solver:
         return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi, centre,
                       tiles, *context, lo_tol, hi_tol)
 
+    def _kept(self, v, i, w, j) -> bool:
+        """Whether slot (v, i) to (w, j) is an edge the host has now (not one to draw)."""
+        host = self.host
+        return v in host.prim and host.link[v][i] == (w, j)
+
     def _known(self, v, i, w, j, d, lab) -> float:
         """An edge's length known in advance: fixed by its class, or kept (an existing edge,
         as long as it is now); nan when it is drawn."""
@@ -418,7 +423,7 @@ class Solver:
         fixed = host.t.lengths[lab][2]
         if fixed is not None:
             return fixed
-        if v in host.prim and host.link[v][i] == (w, j):
+        if self._kept(v, i, w, j):
             pv, pw = host.pos[v], host.pos[w]
             return d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
         return math.nan

@@ -46,10 +46,14 @@ class Grid:
     def key(self, p: Point) -> tuple[int, int]:
         return (math.floor(p[0] / self.cell), math.floor(p[1] / self.cell))
 
-    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> list[tuple[int, int]]:
+    def span(self, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int, int, int]:
+        """The columns i0..i1 and rows j0..j1 of the cells a box touches."""
         c = self.cell
-        i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
-        j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
+        return (math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c),
+                math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c))
+
+    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> list[tuple[int, int]]:
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
         if i0 == i1 and j0 == j1:        # the usual case for a point or a short edge
             return [(i0, j0)]
         return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
@@ -157,9 +161,8 @@ class Grid:
         (for callers that put them in an order of their own); with a `tag`, only the points
         filed under it (a splice's search box spans about 30 cells and many primitives)."""
         out = []
-        cells, c = self._pt_cells if tag is None else self._tag_cells.get(tag, {}), self.cell
-        i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
-        j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
+        cells = self._pt_cells if tag is None else self._tag_cells.get(tag, {})
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
         # box_cells' order, without listing the cells.
         for i in range(i0, i1 + 1):
             for j in range(j0, j1 + 1):
