@@ -8,3 +8,5 @@ engine (the gallery). So it lives here, one layer above both, and so do the two 
 own CLI stays free of runtime imports, and `report.ggrun` hands the runtime's command line the
 compiler, so that `ggrun` can run an example by compiling it in memory.
 """
+
+import grammar_lang  # noqa: F401,E402 - fixes numpy's kernels first (grammar_lang/blas.py)
