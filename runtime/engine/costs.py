@@ -7,14 +7,14 @@ proposed change before any geometry is solved, so a proposal the cost refuses co
 Built in (`--cost NAME[:ARG[:ARG]]`):
 - `size[:N]`: grow to about N vertices (default: the number of steps asked for): the cost is
   N − n below N and (n − N)/4 above;
-- `scene[:N]`: `size[:N]` plus the example's proportions of face labels (`SceneCost`); for a
-  grammar with a frame only;
+- `scene[:N]`: `size[:N]` plus the example's proportions of face labels and of bare lines
+  (`SceneCost`); for a grammar with a frame only;
 - `density:D`: about D vertices per unit² of the drawing's bounding box;
 - `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
 - `none`: accept every placeable proposal.
 
 The default is `size` with N = steps, and in a frame `scene`: `size` plus the example's
-proportions of face labels (see `SceneCost`).
+proportions (see `SceneCost`).
 """
 
 from __future__ import annotations
@@ -84,22 +84,31 @@ class LabelCost:
 
 @dataclass(frozen=True)
 class SceneCost:
-    """The default in a frame: `size`, plus the example's proportions. Each face label's
-    share of the edges beside it is held near its share in the example (the edges beside a
-    window over all edges, say), so that as the run grows the cheap parts do not crowd out the
-    rest: |count − share·edges| per face label, in edges, added to the size term. The space
-    the frame holds (the face just inside it) is left out: it is beside everything. (At
-    weight 2 a scene that starts from its frame's start graph, the example's own proportions,
-    refuses every first move.)"""
+    """The default in a frame: `size`, plus the example's proportions. Each group of edge
+    labels is held near its share of all edges in the example, so that as the run grows the
+    cheap parts do not crowd out the rest. The groups: per face label, the edges beside it
+    (the edges beside a window, say); and per edge class, its bare lines in the open space,
+    with that space on both sides (a castle's stubs, a flower's stems). The space itself
+    (the face just inside the frame) is no group: it is beside everything. Without the
+    bare-line groups only the size term saw those lines, and it rewards them: the castle grew
+    combs of stubs up its towers' sides.
+
+    A group costs the edges by which its count strays from share·edges beyond √(share·edges),
+    the spread of a count drawn at random with that share: a scene that starts from its
+    frame's start graph starts at the example's own proportions, and without that slack every
+    first move raised the cost more than its growth lowered it (the village stalled there)."""
 
     size: SizeCost
-    groups: tuple[tuple[int, ...], ...]     # per face label: the edge labels beside it
+    groups: tuple[tuple[int, ...], ...]     # per group: its edge labels
     shares: tuple[float, ...]
     name: str = "scene"
 
     def value(self, s: Stats) -> float:
-        off = sum(abs(sum(s.label_count[k] for k in ks) - f * s.edges)
-                  for ks, f in zip(self.groups, self.shares))
+        off = 0.0
+        for ks, f in zip(self.groups, self.shares):
+            expected = f * s.edges
+            off += max(0.0, abs(sum(s.label_count[k] for k in ks) - expected)
+                       - math.sqrt(expected))
         return self.size.value(s) + off
 
 
@@ -113,16 +122,28 @@ def default_cost(header, steps: int) -> Cost:
     for p in header.primitives:
         for t in p.ring:
             per_label[t >> 1] += p.count / 2
-    total = sum(per_label)
-    corner = header.primitives[header.frame.corners[0].prim]
-    space = {f for t in corner.ring for f in (header.labels[t >> 1].left,
-                                              header.labels[t >> 1].right)}
-    groups, shares = [], []
-    for face in sorted({f for l in header.labels for f in (l.left, l.right)} - space):
-        ks = tuple(k for k, l in enumerate(header.labels) if face in (l.left, l.right))
-        groups.append(ks)
-        shares.append(sum(per_label[k] for k in ks) / total if total else 0.0)
+    total = sum(per_label) or 1.0
+    groups = [g for g in _scene_groups(header) if any(per_label[k] for k in g)]
+    shares = [sum(per_label[k] for k in g) / total for g in groups]
     return SceneCost(size, tuple(groups), tuple(shares))
+
+
+def _scene_groups(header) -> list[tuple[int, ...]]:
+    """The edge labels beside each face label but the space's, then each edge class's bare
+    lines in the space (border classes aside: the frame is placed once)."""
+    from grammar_lang.frame import border_labels
+    labels = header.labels
+    corner = header.primitives[header.frame.corners[0].prim]
+    space = {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}
+    faces = sorted({f for l in labels for f in (l.left, l.right)} - space)
+    groups = [tuple(k for k, l in enumerate(labels) if face in (l.left, l.right))
+              for face in faces]
+    border = border_labels(labels, header.classes)
+    bare = [k for k, l in enumerate(labels)
+            if l.left in space and l.right in space and k not in border]
+    for cls in sorted({labels[k].cls for k in bare}):
+        groups.append(tuple(k for k in bare if labels[k].cls == cls))
+    return groups
 
 
 def metropolis_accepts(delta: float, temperature: float, u: float) -> bool:
