@@ -46,9 +46,10 @@ class Matcher:
         # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
         # group fits a target or not as a whole.
         self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
-        # Each group under its smallest token, with its number of half-edges: a target can
-        # only use groups whose tokens it has, so a search looks only under its own tokens.
-        self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int]]] = {}
+        # Each group under its smallest token, with its number of half-edges and the bit set
+        # of its tokens: a target can only use groups whose tokens it has, so a search looks
+        # only under its own tokens, and most groups fail on the bit sets alone.
+        self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int, int]]] = {}
         self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
         self._memo: dict[bd.Gaps, tuple[int, Match | None]] = {}
@@ -62,7 +63,7 @@ class Matcher:
         if piece.counts not in self.by_counts:
             least = piece.counts[0][0] if piece.counts else None
             self.by_least.setdefault(least, []).append(
-                (piece.counts, sum(n for _, n in piece.counts)))
+                (piece.counts, sum(n for _, n in piece.counts), _bits(c)))
         self.by_counts.setdefault(piece.counts, []).append(piece.node)
         self.version += 1
 
@@ -106,9 +107,10 @@ class Matcher:
         if hit is not None and hit[0] == self.version:
             return [p for p in hit[1] if p.node in self.pieces]
         out = []
+        bits = _bits(have)
         for least in (None, *have):
-            for counts, size in self.by_least.get(least, ()):
-                if size <= max_half and all(have.get(t, 0) >= n for t, n in counts):
+            for counts, size, need in self.by_least.get(least, ()):
+                if size <= max_half and not need & ~bits and all(have[t] >= n for t, n in counts):
                     out.extend(self.pieces[i] for i in self.by_counts[counts]
                                if i in self.pieces)
         out.sort(key=lambda p: (-len(p.gaps), p.rank))    # a total order: ranks are unique
@@ -164,6 +166,14 @@ class Matcher:
                 return None
             out += tuple((pc, tuple(idx[q] for q in ps)) for pc, ps in found)
         return out
+
+
+def _bits(tokens) -> int:
+    """The set of (non-negative) tokens as the bits of an int."""
+    out = 0
+    for t in tokens:
+        out |= 1 << t
+    return out
 
 
 class _OutOfBudget(Exception):
