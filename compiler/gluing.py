@@ -13,6 +13,7 @@ of a boundary string, so the string rewrite rules of §4.2 become small arithmet
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import Callable, Iterator, Sequence
 
@@ -39,6 +40,16 @@ class Graph:
     @property
     def is_complete(self) -> bool:
         return not self.gaps and bool(self.verts)
+
+    @property
+    def prim_counts(self) -> Counter:
+        """How many vertices of each primitive: a graph holds another only if it has as many
+        of each, a test many left sides fail. Kept once asked for (the graph is immutable; by
+        hand, as functools.cached_property takes a lock on every first use)."""
+        counts = self.__dict__.get("_prim_counts")
+        if counts is None:
+            counts = self.__dict__["_prim_counts"] = Counter(self.verts)
+        return counts
 
     def tokens(self, rings: Sequence[Sequence[int]]) -> bd.Gaps:
         """The boundary in gap form over tokens: (half-edge token, turns after it) pairs."""

@@ -244,7 +244,6 @@ class Inference:
         """Whether g holds a rule's left side; with `anchors`, one that uses a new vertex (the
         parent held none)."""
         host: Host | None = None
-        have = Counter(g.verts)
         if rules is None:
             cand: set[int] = set()
             for a in anchors:
@@ -252,6 +251,7 @@ class Inference:
             rules = sorted(cand)
         for r in rules:
             rr = self.state.rules[r]
+            have = g.prim_counts
             if any(have[p] < n for p, n in rr.prims.items()):
                 continue
             if host is None:
@@ -302,7 +302,7 @@ class Inference:
                 self.pending = (*plan, rule)
                 return
         idx = len(self.state.rules)
-        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, Counter(g.verts)))
+        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         for p in sorted(set(g.verts)):
             self.state.by_prim.setdefault(p, []).append(idx)
         node.status = RULE
