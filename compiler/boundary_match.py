@@ -15,6 +15,7 @@ grammar_lang.algorithms.matching.
 
 from __future__ import annotations
 
+import bisect
 from collections import Counter
 from dataclasses import dataclass, field
 
@@ -119,17 +120,7 @@ class Matcher:
 
     def _search(self, target: bd.Gaps, max_half: int) -> Match | None:
         m = len(target)
-        prefix = [0]
-        for _, n in target:
-            prefix.append(prefix[-1] + n)
-        total = prefix[-1]
-
-        def turns(a: int, b: int) -> int:
-            """Net turns from just after target[a] to just before target[b], cyclically."""
-            if b > a:
-                return prefix[b] - prefix[a]
-            return total - prefix[a] + prefix[b]
-
+        spots = _Spots(target)
         # Some piece holds target[0]; any piece of a splice may be taken as the outer one
         # (each closing gap, 1 − inner turns, is exactly the target's turns around the rest),
         # so only placements covering position 0 need trying.
@@ -140,7 +131,7 @@ class Matcher:
                 if piece.gaps[j0][0] != first:
                     continue
                 r = piece.gaps[j0:] + piece.gaps[:j0]
-                for pos in _placements(r, target, 0, turns):
+                for pos in _placements(r, spots):
                     self._steps += 1
                     if self._steps > self.budget:
                         raise _OutOfBudget
@@ -180,27 +171,40 @@ class _OutOfBudget(Exception):
     pass
 
 
-def _placements(r: bd.Gaps, target: bd.Gaps, k0: int, turns):
-    """Cyclically increasing placements of r's half-edges in target, r[0] at k0."""
-    m, p = len(target), len(r)
-    pos = [k0]
+class _Spots:
+    """A target's half-edges indexed for placing pieces: `prefix[k]` is the net turns before
+    target[k] (from target[0] on), and `at[(token, prefix[k])]` the positions k in order, so
+    the next half-edge of a piece, a given number of turns after the last placed one, is
+    looked up rather than searched for."""
+
+    def __init__(self, target: bd.Gaps):
+        self.prefix = [0]
+        self.at: dict[tuple[int, int], list[int]] = {}
+        for k, (t, n) in enumerate(target):
+            self.at.setdefault((t, self.prefix[-1]), []).append(k)
+            self.prefix.append(self.prefix[-1] + n)
+
+
+def _placements(r: bd.Gaps, spots: _Spots):
+    """Increasing placements of r's half-edges in the target, r[0] at position 0, each next
+    one the piece's gap of turns after the last."""
+    prefix, p = spots.prefix, len(r)
+    m = len(prefix) - 1
+    pos = [0]
 
     def rec(j: int):
+        last = pos[-1]
         if j == p:
-            if turns(pos[-1], k0) == r[-1][1] if p > 1 else r[0][1] == 1:
+            if prefix[m] - prefix[last] == r[-1][1] if p > 1 else r[0][1] == 1:
                 yield tuple(pos)
             return
-        last = pos[-1]
-        for d in range(1, m):
-            k = (k0 + d) % m
-            if (k - k0) % m <= (last - k0) % m:
-                continue
-            if m - (k - k0) % m < p - j:
+        ks = spots.at.get((r[j][0], prefix[last] + r[j - 1][1]), ())
+        for k in ks[bisect.bisect_right(ks, last):]:
+            if k > m - (p - j):     # the rest of r would not fit after k
                 break
-            if target[k][0] == r[j][0] and turns(last, k) == r[j - 1][1]:
-                pos.append(k)
-                yield from rec(j + 1)
-                pos.pop()
+            pos.append(k)
+            yield from rec(j + 1)
+            pos.pop()
 
     yield from rec(1)
 
