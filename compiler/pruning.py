@@ -110,7 +110,9 @@ class TurnAnalysis:
 
     def _solve(self) -> None:
         n = len(self.moves)
-        w = np.full((n, n), INF)
+        # Turns are small whole numbers, exact in float32, which halves the memory the
+        # shortest-walk search streams through.
+        w = np.full((n, n), INF, dtype=np.float32)
         for a, (p, i, q, j) in enumerate(self.moves):
             if a in self.dead:
                 continue
@@ -132,11 +134,16 @@ class TurnAnalysis:
         reads): a walk between two of its moves never leaves it, so each component is solved
         on its own, in (size)³ instead of (all moves)³."""
         d = np.full_like(w, INF)
+        # A move alone in its component walks nowhere or round its own loop: those at once.
+        alone = np.flatnonzero(np.bincount(self.comp)[self.comp] == 1)
+        loop = w[alone, alone]
+        d[alone, alone] = np.where(loop < 0, -INF, np.minimum(loop, 0))
         order = np.argsort(self.comp, kind="stable")
         cuts = np.flatnonzero(np.diff(self.comp[order])) + 1
         for idx in np.split(order, cuts):
-            block = np.ix_(idx, idx)
-            d[block] = _component_walks(w[block])
+            if len(idx) > 1:
+                block = np.ix_(idx, idx)
+                d[block] = _component_walks(w[block])
         return d
 
     # --- the test ---------------------------------------------------------------------------
@@ -181,6 +188,7 @@ class TurnAnalysis:
                 hi = max(hi, turn + self.high[a, b])
                 any_way = True
         return (lo, hi) if any_way else None
+
 
 def _component_walks(w: np.ndarray) -> np.ndarray:
     """Shortest walks (Floyd-Warshall) between the moves of one strong component. Any walk
