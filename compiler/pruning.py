@@ -197,8 +197,11 @@ def _component_walks(w: np.ndarray) -> np.ndarray:
     d = w.copy()
     # The empty walk: the move that leaves along h_{k+1} may itself land on h_k.
     np.fill_diagonal(d, np.minimum(np.diag(d), 0.0))
+    through = np.empty_like(d)
     for k in range(len(d)):
-        np.minimum(d, d[:, k:k + 1] + d[k:k + 1, :], out=d)
-        if (np.diagonal(d) < 0).any():
+        np.add(d[:, k, None], d[k], out=through)
+        np.minimum(d, through, out=d)
+        # A negative cycle shows on the diagonal by the step of its last move at the latest.
+        if d[k, k] < 0:
             return np.full_like(d, -INF)
     return d
