@@ -54,6 +54,7 @@ class Matcher:
         self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
         self._memo: dict[bd.Gaps, tuple[int, Match | None]] = {}
+        self._targets: dict[bd.Gaps, _Target] = {}
         self._steps = 0
 
     def add(self, piece: Piece) -> None:
@@ -101,17 +102,24 @@ class Matcher:
         self._memo[(target, max_half)] = (self.version, res)
         return res
 
-    def _candidates(self, target: bd.Gaps, max_half: int) -> list[Piece]:
-        have = Counter(t for t, _ in target)
-        key = (tuple(sorted(have.items())), max_half)
+    def _target(self, target: bd.Gaps) -> _Target:
+        """The target prepared for searching; the same ones come back with every new piece."""
+        tg = self._targets.get(target)
+        if tg is None:
+            tg = self._targets[target] = _Target(target)
+        return tg
+
+    def _candidates(self, tg: _Target, max_half: int) -> list[Piece]:
+        key = (tg.counts, max_half)
         hit = self._cands.get(key)
         if hit is not None and hit[0] == self.version:
             return [p for p in hit[1] if p.node in self.pieces]
         out = []
-        bits = _bits(have)
+        have = tg.have
         for least in (None, *have):
             for counts, size, need in self.by_least.get(least, ()):
-                if size <= max_half and not need & ~bits and all(have[t] >= n for t, n in counts):
+                if size <= max_half and not need & ~tg.bits and all(
+                        have[t] >= n for t, n in counts):
                     out.extend(self.pieces[i] for i in self.by_counts[counts]
                                if i in self.pieces)
         out.sort(key=lambda p: (-len(p.gaps), p.rank))    # a total order: ranks are unique
@@ -120,18 +128,18 @@ class Matcher:
 
     def _search(self, target: bd.Gaps, max_half: int) -> Match | None:
         m = len(target)
-        spots = _Spots(target)
+        tg = self._target(target)
         # Some piece holds target[0]; any piece of a splice may be taken as the outer one
         # (each closing gap, 1 − inner turns, is exactly the target's turns around the rest),
         # so only placements covering position 0 need trying.
         first = target[0][0]
-        for piece in self._candidates(target, min(max_half, m)):
+        for piece in self._candidates(tg, min(max_half, m)):
             p = len(piece.gaps)
             for j0 in range(p):
                 if piece.gaps[j0][0] != first:
                     continue
                 r = piece.gaps[j0:] + piece.gaps[:j0]
-                for pos in _placements(r, spots):
+                for pos in _placements(r, tg):
                     self._steps += 1
                     if self._steps > self.budget:
                         raise _OutOfBudget
@@ -171,13 +179,17 @@ class _OutOfBudget(Exception):
     pass
 
 
-class _Spots:
-    """A target's half-edges indexed for placing pieces: `prefix[k]` is the net turns before
+class _Target:
+    """A target boundary prepared for searches: its tokens counted (which pieces can fit at
+    all) and its half-edges indexed for placing pieces. `prefix[k]` is the net turns before
     target[k] (from target[0] on), and `at[(token, prefix[k])]` the positions k in order, so
     the next half-edge of a piece, a given number of turns after the last placed one, is
     looked up rather than searched for."""
 
     def __init__(self, target: bd.Gaps):
+        self.have = Counter(t for t, _ in target)
+        self.counts = tuple(sorted(self.have.items()))
+        self.bits = _bits(self.have)
         self.prefix = [0]
         self.at: dict[tuple[int, int], list[int]] = {}
         for k, (t, n) in enumerate(target):
@@ -185,10 +197,10 @@ class _Spots:
             self.prefix.append(self.prefix[-1] + n)
 
 
-def _placements(r: bd.Gaps, spots: _Spots):
+def _placements(r: bd.Gaps, tg: _Target):
     """Increasing placements of r's half-edges in the target, r[0] at position 0, each next
     one the piece's gap of turns after the last."""
-    prefix, p = spots.prefix, len(r)
+    prefix, p = tg.prefix, len(r)
     m = len(prefix) - 1
     pos = [0]
 
@@ -198,7 +210,7 @@ def _placements(r: bd.Gaps, spots: _Spots):
             if prefix[m] - prefix[last] == r[-1][1] if p > 1 else r[0][1] == 1:
                 yield tuple(pos)
             return
-        ks = spots.at.get((r[j][0], prefix[last] + r[j - 1][1]), ())
+        ks = tg.at.get((r[j][0], prefix[last] + r[j - 1][1]), ())
         for k in ks[bisect.bisect_right(ks, last):]:
             if k > m - (p - j):     # the rest of r would not fit after k
                 break
