@@ -43,7 +43,9 @@ class Matcher:
         self.splice = splice          # False: no rule may splice several graphs (Appendix A)
         self.budget = budget
         self.pieces: dict[int, Piece] = {}
-        self.by_string: dict[bd.Gaps, list[int]] = {}
+        # Pieces by their gaps in sorted order: any rotation of a target's string has the
+        # same, and sorting is cheaper than finding its least rotation.
+        self.by_gaps: dict[bd.Gaps, list[int]] = {}
         # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
         # group fits a target or not as a whole.
         self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
@@ -61,7 +63,7 @@ class Matcher:
         c = Counter(t for t, _ in piece.gaps)
         piece = Piece(piece.node, piece.gaps, piece.rank, tuple(sorted(c.items())))
         self.pieces[piece.node] = piece
-        self.by_string.setdefault(bd.least_rotation(piece.gaps), []).append(piece.node)
+        self.by_gaps.setdefault(tuple(sorted(piece.gaps)), []).append(piece.node)
         if piece.counts not in self.by_counts:
             least = piece.counts[0][0] if piece.counts else None
             self.by_least.setdefault(least, []).append(
@@ -77,7 +79,7 @@ class Matcher:
 
     def find(self, target: bd.Gaps, rank: tuple[int, int]) -> Match | None:
         """A way to build `target` from pieces simpler than `rank`, or None."""
-        for node in self.by_string.get(bd.least_rotation(target), ()):
+        for node in self.by_gaps.get(tuple(sorted(target)), ()):
             p = self.pieces.get(node)
             if p is not None and p.rank < rank:
                 pos = _align_whole(p.gaps, target)
