@@ -15,6 +15,7 @@ grammar_lang.algorithms.matching.
 
 from __future__ import annotations
 
+import bisect
 from collections import Counter
 from dataclasses import dataclass, field
 
@@ -42,27 +43,31 @@ class Matcher:
         self.splice = splice          # False: no rule may splice several graphs (Appendix A)
         self.budget = budget
         self.pieces: dict[int, Piece] = {}
-        self.by_string: dict[bd.Gaps, list[int]] = {}
+        # Pieces by their gaps in sorted order: any rotation of a target's string has the
+        # same, and sorting is cheaper than finding its least rotation.
+        self.by_gaps: dict[bd.Gaps, list[int]] = {}
         # Pieces grouped by their multiset of tokens: far fewer groups than pieces, and a
         # group fits a target or not as a whole.
         self.by_counts: dict[tuple[tuple[int, int], ...], list[int]] = {}
-        # Each group under its smallest token, with its number of half-edges: a target can
-        # only use groups whose tokens it has, so a search looks only under its own tokens.
-        self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int]]] = {}
+        # Each group under its smallest token, with its number of half-edges and the bit set
+        # of its tokens: a target can only use groups whose tokens it has, so a search looks
+        # only under its own tokens, and most groups fail on the bit sets alone.
+        self.by_least: dict[int | None, list[tuple[tuple[tuple[int, int], ...], int, int]]] = {}
         self._cands: dict[tuple, tuple[int, list[Piece]]] = {}
         self.version = 0
         self._memo: dict[bd.Gaps, tuple[int, Match | None]] = {}
+        self._targets: dict[bd.Gaps, _Target] = {}
         self._steps = 0
 
     def add(self, piece: Piece) -> None:
         c = Counter(t for t, _ in piece.gaps)
         piece = Piece(piece.node, piece.gaps, piece.rank, tuple(sorted(c.items())))
         self.pieces[piece.node] = piece
-        self.by_string.setdefault(bd.least_rotation(piece.gaps), []).append(piece.node)
+        self.by_gaps.setdefault(tuple(sorted(piece.gaps)), []).append(piece.node)
         if piece.counts not in self.by_counts:
             least = piece.counts[0][0] if piece.counts else None
             self.by_least.setdefault(least, []).append(
-                (piece.counts, sum(n for _, n in piece.counts)))
+                (piece.counts, sum(n for _, n in piece.counts), _bits(c)))
         self.by_counts.setdefault(piece.counts, []).append(piece.node)
         self.version += 1
 
@@ -74,7 +79,7 @@ class Matcher:
 
     def find(self, target: bd.Gaps, rank: tuple[int, int]) -> Match | None:
         """A way to build `target` from pieces simpler than `rank`, or None."""
-        for node in self.by_string.get(bd.least_rotation(target), ()):
+        for node in self.by_gaps.get(tuple(sorted(target)), ()):
             p = self.pieces.get(node)
             if p is not None and p.rank < rank:
                 pos = _align_whole(p.gaps, target)
@@ -99,16 +104,24 @@ class Matcher:
         self._memo[(target, max_half)] = (self.version, res)
         return res
 
-    def _candidates(self, target: bd.Gaps, max_half: int) -> list[Piece]:
-        have = Counter(t for t, _ in target)
-        key = (tuple(sorted(have.items())), max_half)
+    def _target(self, target: bd.Gaps) -> _Target:
+        """The target prepared for searching; the same ones come back with every new piece."""
+        tg = self._targets.get(target)
+        if tg is None:
+            tg = self._targets[target] = _Target(target)
+        return tg
+
+    def _candidates(self, tg: _Target, max_half: int) -> list[Piece]:
+        key = (tg.counts, max_half)
         hit = self._cands.get(key)
         if hit is not None and hit[0] == self.version:
             return [p for p in hit[1] if p.node in self.pieces]
         out = []
+        have = tg.have
         for least in (None, *have):
-            for counts, size in self.by_least.get(least, ()):
-                if size <= max_half and all(have.get(t, 0) >= n for t, n in counts):
+            for counts, size, need in self.by_least.get(least, ()):
+                if size <= max_half and not need & ~tg.bits and all(
+                        have[t] >= n for t, n in counts):
                     out.extend(self.pieces[i] for i in self.by_counts[counts]
                                if i in self.pieces)
         out.sort(key=lambda p: (-len(p.gaps), p.rank))    # a total order: ranks are unique
@@ -117,28 +130,18 @@ class Matcher:
 
     def _search(self, target: bd.Gaps, max_half: int) -> Match | None:
         m = len(target)
-        prefix = [0]
-        for _, n in target:
-            prefix.append(prefix[-1] + n)
-        total = prefix[-1]
-
-        def turns(a: int, b: int) -> int:
-            """Net turns from just after target[a] to just before target[b], cyclically."""
-            if b > a:
-                return prefix[b] - prefix[a]
-            return total - prefix[a] + prefix[b]
-
+        tg = self._target(target)
         # Some piece holds target[0]; any piece of a splice may be taken as the outer one
         # (each closing gap, 1 − inner turns, is exactly the target's turns around the rest),
         # so only placements covering position 0 need trying.
         first = target[0][0]
-        for piece in self._candidates(target, min(max_half, m)):
+        for piece in self._candidates(tg, min(max_half, m)):
             p = len(piece.gaps)
             for j0 in range(p):
                 if piece.gaps[j0][0] != first:
                     continue
                 r = piece.gaps[j0:] + piece.gaps[:j0]
-                for pos in _placements(r, target, 0, turns):
+                for pos in _placements(r, tg):
                     self._steps += 1
                     if self._steps > self.budget:
                         raise _OutOfBudget
@@ -166,31 +169,56 @@ class Matcher:
         return out
 
 
+def _bits(tokens) -> int:
+    """The set of (non-negative) tokens as the bits of an int."""
+    out = 0
+    for t in tokens:
+        out |= 1 << t
+    return out
+
+
 class _OutOfBudget(Exception):
     pass
 
 
-def _placements(r: bd.Gaps, target: bd.Gaps, k0: int, turns):
-    """Cyclically increasing placements of r's half-edges in target, r[0] at k0."""
-    m, p = len(target), len(r)
-    pos = [k0]
+class _Target:
+    """A target boundary prepared for searches: its tokens counted (which pieces can fit at
+    all) and its half-edges indexed for placing pieces. `prefix[k]` is the net turns before
+    target[k] (from target[0] on), and `at[(token, prefix[k])]` the positions k in order, so
+    the next half-edge of a piece, a given number of turns after the last placed one, is
+    looked up rather than searched for."""
+
+    def __init__(self, target: bd.Gaps):
+        self.have = Counter(t for t, _ in target)
+        self.counts = tuple(sorted(self.have.items()))
+        self.bits = _bits(self.have)
+        self.prefix = [0]
+        self.at: dict[tuple[int, int], list[int]] = {}
+        for k, (t, n) in enumerate(target):
+            self.at.setdefault((t, self.prefix[-1]), []).append(k)
+            self.prefix.append(self.prefix[-1] + n)
+
+
+def _placements(r: bd.Gaps, tg: _Target):
+    """Increasing placements of r's half-edges in the target, r[0] at position 0, each next
+    one the piece's gap of turns after the last."""
+    prefix, p = tg.prefix, len(r)
+    m = len(prefix) - 1
+    pos = [0]
 
     def rec(j: int):
+        last = pos[-1]
         if j == p:
-            if turns(pos[-1], k0) == r[-1][1] if p > 1 else r[0][1] == 1:
+            if prefix[m] - prefix[last] == r[-1][1] if p > 1 else r[0][1] == 1:
                 yield tuple(pos)
             return
-        last = pos[-1]
-        for d in range(1, m):
-            k = (k0 + d) % m
-            if (k - k0) % m <= (last - k0) % m:
-                continue
-            if m - (k - k0) % m < p - j:
+        ks = tg.at.get((r[j][0], prefix[last] + r[j - 1][1]), ())
+        for k in ks[bisect.bisect_right(ks, last):]:
+            if k > m - (p - j):     # the rest of r would not fit after k
                 break
-            if target[k][0] == r[j][0] and turns(last, k) == r[j - 1][1]:
-                pos.append(k)
-                yield from rec(j + 1)
-                pos.pop()
+            pos.append(k)
+            yield from rec(j + 1)
+            pos.pop()
 
     yield from rec(1)
 

@@ -13,6 +13,8 @@ of a boundary string, so the string rewrite rules of §4.2 become small arithmet
 
 from __future__ import annotations
 
+import bisect
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import Callable, Iterator, Sequence
 
@@ -40,6 +42,16 @@ class Graph:
     def is_complete(self) -> bool:
         return not self.gaps and bool(self.verts)
 
+    @property
+    def prim_counts(self) -> Counter:
+        """How many vertices of each primitive: a graph holds another only if it has as many
+        of each, a test many left sides fail. Kept once asked for (the graph is immutable; by
+        hand, as functools.cached_property takes a lock on every first use)."""
+        counts = self.__dict__.get("_prim_counts")
+        if counts is None:
+            counts = self.__dict__["_prim_counts"] = Counter(self.verts)
+        return counts
+
     def tokens(self, rings: Sequence[Sequence[int]]) -> bd.Gaps:
         """The boundary in gap form over tokens: (half-edge token, turns after it) pairs."""
         return tuple((rings[self.verts[v]][i], n) for (v, i), n in self.gaps)
@@ -56,28 +68,33 @@ def primitive_graph(prim: int, ring_len: int) -> Graph:
     return Graph((prim,), (), gaps, (prim,))
 
 
-def _rotate_to(items: list, slot: Slot) -> list:
-    k = items.index(slot)
-    return items[k:] + items[:k]
+def _after(gaps: bd.Gaps, slot: Slot) -> tuple[int, bd.Gaps]:
+    """The turns after open slot `slot`, and the other gaps in boundary order from there."""
+    k = [s for s, _ in gaps].index(slot)
+    return gaps[k][1], gaps[k + 1:] + gaps[:k]
 
 
 def branch_glue(g: Graph, s: Slot, h: Graph, t: Slot, rings, unit: int | None = None) -> Graph:
     """Glue open slot `s` of `g` to open slot `t` of `h` (disjoint graphs, opposite tokens);
     `unit` names h when it is a block glued whole."""
     off = len(g.verts)
-    ht = (t[0] + off, t[1])
-    h_items = [(it[0] + off, it[1]) if isinstance(it, tuple) else it
-               for it in bd.from_gaps(h.gaps)]
-    after = _rotate_to(h_items, ht)[1:]
-    g_items = _rotate_to(list(bd.from_gaps(g.gaps)), s)
-    barred = bd.is_bar(rings[g.verts[s[0]]][s[1]])
-    repl = [bd.DOWN] + after if barred else after + [bd.DOWN]
-    items = repl + g_items[1:]
-    edges = g.edges + tuple((v + off, i, w + off, j) for v, i, w, j in h.edges)
-    a, b = sorted((s, ht))
-    edges = tuple(sorted(edges + ((a[0], a[1], b[0], b[1]),)))
+    # In string form the open `a` becomes B∨ and `ā` becomes ∨B, B being h's walk after t:
+    # in gap form, h's other gaps then g's, with h's turns after t and the ∨ added around.
+    m0, h_rest = _after(h.gaps, t)
+    n_s, g_rest = _after(g.gaps, s)
+    gaps = [((v + off, i), n) for (v, i), n in h_rest]
+    gaps += g_rest
+    if gaps:
+        barred = bd.is_bar(rings[g.verts[s[0]]][s[1]])
+        lead, mid = (m0 - 1, n_s) if barred else (m0, n_s - 1)
+        # The turns before B wrap round to the last gap; those after it end B's last gap.
+        for k, more in ((-1, lead), (len(h_rest) - 1 if h_rest else -1, mid)):
+            gaps[k] = (gaps[k][0], gaps[k][1] + more)
+    edges = list(g.edges)
+    edges += [(v + off, i, w + off, j) for v, i, w, j in h.edges]
+    bisect.insort(edges, (s[0], s[1], t[0] + off, t[1]))   # both parts were sorted, h's last
     units = g.units + ((unit,) if unit is not None else h.units)
-    return Graph(g.verts + h.verts, edges, bd.gaps(items), units)
+    return Graph(g.verts + h.verts, tuple(edges), tuple(gaps), units)
 
 
 def loop_gluable(g: Graph, k: int, rings) -> bool:

@@ -41,6 +41,7 @@ class Hierarchy:
         self.ring_len = list(ring_len)
         self.nodes: list[Node] = []
         self.index: dict[Key, int] = {}
+        self.by_prim: dict[int, list[int]] = {}     # primitive → the graphs holding it
 
     def lookup_or_add(self, g: Graph, gen: int, parent: int | None) -> tuple[Node, bool]:
         key = canonical_key(g, self.ring_len)
@@ -57,6 +58,8 @@ class Hierarchy:
             self.nodes[parent].children.append(node.id)
         self.nodes.append(node)
         self.index[key] = node.id
+        for p in g.prim_counts:
+            self.by_prim.setdefault(p, []).append(node.id)
         return node, True
 
     def kept(self) -> list[Node]:

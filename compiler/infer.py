@@ -244,7 +244,6 @@ class Inference:
         """Whether g holds a rule's left side; with `anchors`, one that uses a new vertex (the
         parent held none)."""
         host: Host | None = None
-        have = Counter(g.verts)
         if rules is None:
             cand: set[int] = set()
             for a in anchors:
@@ -252,6 +251,9 @@ class Inference:
             rules = sorted(cand)
         for r in rules:
             rr = self.state.rules[r]
+            if len(rr.lhs.verts) > len(g.verts):
+                continue      # a match is one-to-one (and starters can be whole drawings)
+            have = g.prim_counts
             if any(have[p] < n for p, n in rr.prims.items()):
                 continue
             if host is None:
@@ -302,7 +304,7 @@ class Inference:
                 self.pending = (*plan, rule)
                 return
         idx = len(self.state.rules)
-        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, Counter(g.verts)))
+        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         for p in sorted(set(g.verts)):
             self.state.by_prim.setdefault(p, []).append(idx)
         node.status = RULE
@@ -401,12 +403,15 @@ class Inference:
 
     def _drop_holders(self, idx: int, lhs_id: int) -> None:
         """Irreducible and over-limit graphs that hold the new left side are reducible now
-        (with §5.4's exception for graphs that hold one of the rule's own right-side graphs)."""
-        for other in self.hier.nodes:
+        (with §5.4's exception for graphs that hold one of the rule's own right-side graphs).
+        Only graphs with the left side's rarest primitive can hold it."""
+        by_prim = self.hier.by_prim
+        rarest = min(self.state.rules[idx].prims, key=lambda p: len(by_prim.get(p, ())))
+        for nid in by_prim.get(rarest, ()):
+            other = self.hier.nodes[nid]
             if other.id == lhs_id or other.status not in (KEPT, OVER):
                 continue
-            g = other.graph
-            if self._holds_left_side(g, None, [idx]):
+            if self._holds_left_side(other.graph, None, [idx]):
                 other.status = REDUCIBLE
                 self.matcher.remove(other.id)
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterator, Sequence
 
-from grammar_lang.algorithms.matching import Step, anchored_matches, walk_plans
+from grammar_lang.algorithms.matching import WalkPlans, anchored_matches
 
 from .gluing import Edge, Graph
 
@@ -26,7 +26,7 @@ class Pattern:
     """A connected graph prepared for matching from each of its vertices."""
 
     graph: Graph
-    plans: tuple[tuple[Step, ...], ...]        # the walk from each anchor vertex (kernel)
+    plans: WalkPlans                           # the walk from each anchor vertex (kernel)
     opens: tuple[tuple[int, int], ...] = ()    # open slots, in boundary order
     wires: tuple[tuple[int, int], ...] = ()    # open-slot index pairs the right side wires together
 
@@ -35,7 +35,7 @@ class Pattern:
         partner = {}
         for v, i, w, j in g.edges:
             partner[(v, i)], partner[(w, j)] = (w, j), (v, i)
-        return Pattern(g, walk_plans(range(len(g.verts)), partner),
+        return Pattern(g, WalkPlans(partner),
                        tuple(slot for slot, _ in g.gaps), tuple(sorted(wires)))
 
 

@@ -37,10 +37,11 @@ from scipy.sparse.csgraph import connected_components
 
 from grammar_lang import boundary as bd
 
-from .gluing import Graph, primitive_graph, unit_places
+from .gluing import Graph, Slot, primitive_graph, unit_places
 
 INF = float("inf")
 Move = tuple[int, int, int, int]     # leave (P, i), land on (Q, j)
+Turns = tuple[float, float]          # the least and the greatest turns of some walks
 
 
 class TurnAnalysis:
@@ -109,7 +110,9 @@ class TurnAnalysis:
 
     def _solve(self) -> None:
         n = len(self.moves)
-        w = np.full((n, n), INF)
+        # Turns are small whole numbers, exact in float32, which halves the memory the
+        # shortest-walk search streams through.
+        w = np.full((n, n), INF, dtype=np.float32)
         for a, (p, i, q, j) in enumerate(self.moves):
             if a in self.dead:
                 continue
@@ -121,6 +124,7 @@ class TurnAnalysis:
         # Moves that can follow each other both ways: the strong components of the move graph.
         _, self.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
                                             connection="strong")
+        self._ways: dict[tuple[Slot, Slot], Turns | None] = {}
         self.low = self._by_component(w)                               # −inf: a negative cycle
         self.high = -self._by_component(np.where(np.isfinite(w), -w, INF))  # +inf: positive
         self._solved = True
@@ -130,25 +134,16 @@ class TurnAnalysis:
         reads): a walk between two of its moves never leaves it, so each component is solved
         on its own, in (size)³ instead of (all moves)³."""
         d = np.full_like(w, INF)
+        # A move alone in its component walks nowhere or round its own loop: those at once.
+        alone = np.flatnonzero(np.bincount(self.comp)[self.comp] == 1)
+        loop = w[alone, alone]
+        d[alone, alone] = np.where(loop < 0, -INF, np.minimum(loop, 0))
         order = np.argsort(self.comp, kind="stable")
         cuts = np.flatnonzero(np.diff(self.comp[order])) + 1
         for idx in np.split(order, cuts):
-            block = np.ix_(idx, idx)
-            d[block] = self._floyd(w[block])
-        return d
-
-    @staticmethod
-    def _floyd(w: np.ndarray) -> np.ndarray:
-        d = w.copy()
-        # The empty walk: the move that leaves along h_{k+1} may itself land on h_k.
-        np.fill_diagonal(d, np.minimum(np.diag(d), 0.0))
-        for k in range(len(d)):
-            np.minimum(d, d[:, k:k + 1] + d[k:k + 1, :], out=d)
-        neg = np.diag(d) < 0
-        if neg.any():
-            # A walk that can pass through a negative cycle can be made as low as we like.
-            bad = np.isfinite(d[:, neg])[:, :, None] & np.isfinite(d[neg, :])[None, :, :]
-            d = np.where(bad.any(axis=1), -INF, d)
+            if len(idx) > 1:
+                block = np.ix_(idx, idx)
+                d[block] = _component_walks(w[block])
         return d
 
     # --- the test ---------------------------------------------------------------------------
@@ -164,19 +159,49 @@ class TurnAnalysis:
             self._solve()
         m = len(g.gaps)
         for k in range(m):
+            back = self._way_back(slots[(k + 1) % m], slots[k])
             tk = g.gaps[k][1]
-            starts = [a for a in self.leaving.get(slots[(k + 1) % m], ()) if a not in self.dead]
-            ends = [b for b in self.landing.get(slots[k], ()) if b not in self.dead]
-            lo, hi, any_way = INF, -INF, False
-            for a in starts:
-                for b in ends:
-                    if self.comp[a] != self.comp[b]:
-                        continue
-                    p, i = self.moves[b][:2]
-                    base = tk + (-1 if bd.is_bar(self.rings[p][i]) else 0)
-                    lo = min(lo, base + self.low[a, b])
-                    hi = max(hi, base + self.high[a, b])
-                    any_way = True
-            if not any_way or lo > 1 or hi < -1:
+            if back is None or tk + back[0] > 1 or tk + back[1] < -1:
                 return True
         return False
+
+    def _way_back(self, leave: Slot, land: Slot) -> Turns | None:
+        """The least and the greatest turns of a walk from a move leaving along `leave` to one
+        landing on `land`, with that landing's own turn, in one strong component; None if there
+        is none. Many graphs share these slot pairs: each is worked out once per solve."""
+        key = (leave, land)
+        if key not in self._ways:
+            self._ways[key] = self._walks_between(leave, land)
+        return self._ways[key]
+
+    def _walks_between(self, leave: Slot, land: Slot) -> Turns | None:
+        starts = [a for a in self.leaving.get(leave, ()) if a not in self.dead]
+        ends = [b for b in self.landing.get(land, ()) if b not in self.dead]
+        lo, hi, any_way = INF, -INF, False
+        for a in starts:
+            for b in ends:
+                if self.comp[a] != self.comp[b]:
+                    continue
+                p, i = self.moves[b][:2]
+                turn = -1 if bd.is_bar(self.rings[p][i]) else 0
+                lo = min(lo, turn + self.low[a, b])
+                hi = max(hi, turn + self.high[a, b])
+                any_way = True
+        return (lo, hi) if any_way else None
+
+
+def _component_walks(w: np.ndarray) -> np.ndarray:
+    """Shortest walks (Floyd-Warshall) between the moves of one strong component. Any walk
+    between two of its moves can go round any cycle of it, so one negative cycle makes every
+    walk as low as we like: the search stops as soon as it meets one."""
+    d = w.copy()
+    # The empty walk: the move that leaves along h_{k+1} may itself land on h_k.
+    np.fill_diagonal(d, np.minimum(np.diag(d), 0.0))
+    through = np.empty_like(d)
+    for k in range(len(d)):
+        np.add(d[:, k, None], d[k], out=through)
+        np.minimum(d, through, out=d)
+        # A negative cycle shows on the diagonal by the step of its last move at the latest.
+        if d[k, k] < 0:
+            return np.full_like(d, -INF)
+    return d

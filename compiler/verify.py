@@ -65,30 +65,33 @@ class _SizeBound:
         return count
 
     def too_big(self, n: int, count: dict[int, int]) -> bool:
-        """Whether `n` vertices with these open half-edges need more than `max_prims`."""
-        need, total = 0, 0
+        """Whether `n` vertices with these open half-edges need more than `max_prims`: some
+        token's excess needs more new vertices than there is room for, or all of them do."""
+        room = self.max_prims - n
+        if room < 0:
+            return True
+        total = 0
         for t, c in count.items():
             extra = c - count.get(t ^ 1, 0)
             if extra > 0:
-                if t ^ 1 not in self.mult:
-                    return True
-                need = max(need, -(-extra // self.mult[t ^ 1]))
+                m = self.mult.get(t ^ 1)
                 total += extra
-        return n + max(need, -(-total // self.widest)) > self.max_prims
+                if m is None or extra > m * room or total > self.widest * room:
+                    return True
+        return False
 
     def rejects(self, g: Graph) -> bool:
         return len(g.verts) > self.max_prims or self.too_big(len(g.verts), self.open_counts(g))
 
     def admit_for(self, g: Graph) -> Callable[[Slot, int, Slot], bool]:
-        """The bound applied to a branch gluing before the child is built."""
-        base, n, rings = self.open_counts(g), len(g.verts), self.rings
+        """The bound applied to a branch gluing before the child is built. (The glued t and t̄
+        leave every token's excess over its opposite as it was: they are left in the count.)"""
+        base, n = self.open_counts(g), len(g.verts)
 
         def admit(s: Slot, b: int, t: Slot) -> bool:
             count = dict(base)
             for tok, c in self.prim_open[b].items():
                 count[tok] = count.get(tok, 0) + c
-            for tok in (rings[g.verts[s[0]]][s[1]], rings[b][t[1]]):
-                count[tok] -= 1
             return not self.too_big(n + 1, count)
         return admit
 

@@ -18,31 +18,28 @@ Edge = tuple[int, int, int, int]
 Key = tuple
 
 
-def _partners(n: int, edges: Sequence[Edge]) -> list[dict[int, Slot]]:
-    out: list[dict[int, Slot]] = [{} for _ in range(n)]
+def _partners(labels: Sequence[int], edges: Sequence[Edge], ring_len) -> list[list]:
+    """Each vertex's slots in ring order: the (vertex, slot) glued to it, or None if open."""
+    out: list[list] = [[None] * ring_len[p] for p in labels]
     for v, i, w, j in edges:
         out[v][i] = (w, j)
         out[w][j] = (v, i)
     return out
 
 
-def _encode(labels: Sequence[int], part, start: int, ring_len) -> tuple[Key, dict[int, int]]:
+def _encode(labels: Sequence[int], part, start: int) -> tuple[Key, list[int]]:
     order = [start]
-    num = {start: 0}
+    num = [-1] * len(labels)
+    num[start] = 0
     enc: list = []
-    k = 0
-    while k < len(order):
-        v = order[k]
-        k += 1
-        p = labels[v]
-        enc.append(p)
-        for i in range(ring_len[p]):
-            q = part[v].get(i)
+    for v in order:                 # the order grows while it is read
+        enc.append(labels[v])
+        for q in part[v]:
             if q is None:
                 enc.append(-1)
                 continue
             w, j = q
-            if w not in num:
+            if num[w] < 0:
                 num[w] = len(order)
                 order.append(w)
             enc.append(num[w] * 64 + j)
@@ -55,13 +52,13 @@ def canonical_key(labels: Sequence[int], edges: Sequence[Edge], ring_len: Sequen
     `ring_len[p]` is the number of slots of primitive p."""
     if not labels:
         return ()
-    part = _partners(len(labels), edges)
+    part = _partners(labels, edges, ring_len)
     least = min(labels)
     best = None
     for start, p in enumerate(labels):
         if p != least:
             continue
-        enc, num = _encode(labels, part, start, ring_len)
+        enc, num = _encode(labels, part, start)
         if best is not None and enc > best[0]:
             continue
         renumbered = [((num[v], i), n) for (v, i), n in gaps]

@@ -25,16 +25,32 @@ def walk_plans(vertices: Iterable[int], partner: Mapping[Slot, Slot]
                ) -> tuple[tuple[Step, ...], ...]:
     """For each vertex of a connected pattern taken as the anchor, the breadth-first walk that
     maps the rest: every glued slot pair once, a vertex's slots in ring order."""
-    slots: dict[int, list[int]] = {}
-    for v, i in sorted(partner):
-        slots.setdefault(v, []).append(i)
-    plans = []
-    for anchor in vertices:
+    plans = WalkPlans(partner)
+    return tuple(plans[anchor] for anchor in vertices)
+
+
+class WalkPlans:
+    """`walk_plans` worked out for each anchor on first use: a big pattern (an example's
+    component) is mostly matched from few of its vertices, and each plan costs its size."""
+
+    def __init__(self, partner: Mapping[Slot, Slot]):
+        self.partner = partner
+        self.slots: dict[int, list[int]] = {}
+        for v, i in sorted(partner):
+            self.slots.setdefault(v, []).append(i)
+        self._plans: dict[int, tuple[Step, ...]] = {}
+
+    def __getitem__(self, anchor: int) -> tuple[Step, ...]:
+        if anchor not in self._plans:
+            self._plans[anchor] = self._walk(anchor)
+        return self._plans[anchor]
+
+    def _walk(self, anchor: int) -> tuple[Step, ...]:
         steps: list[Step] = []
         seen, queue, done = {anchor}, [anchor], set()
         for u in queue:                        # the queue grows while it is read
-            for i in slots.get(u, ()):
-                s = partner[(u, i)]
+            for i in self.slots.get(u, ()):
+                s = self.partner[(u, i)]
                 key = min((u, i), s)
                 if key in done:
                     continue
@@ -43,8 +59,7 @@ def walk_plans(vertices: Iterable[int], partner: Mapping[Slot, Slot]
                 if s[0] not in seen:
                     seen.add(s[0])
                     queue.append(s[0])
-        plans.append(tuple(steps))
-    return tuple(plans)
+        return tuple(steps)
 
 
 def extend(link, prim, want: Sequence[int], steps: Sequence[Step], anchor: int, h: int,
@@ -71,7 +86,8 @@ def extend(link, prim, want: Sequence[int], steps: Sequence[Step], anchor: int, 
     return True
 
 
-def anchored_matches(link, prim, want: Sequence[int], plans: Sequence[Sequence[Step]],
+def anchored_matches(link, prim, want: Sequence[int],
+                     plans: Sequence[Sequence[Step]] | WalkPlans,
                      roots: Iterable[tuple[int, int]],
                      feasible: Callable[[list[int]], bool] | None = None
                      ) -> Iterator[list[int]]:
