@@ -408,8 +408,8 @@ class Solver:
             if tile and fixed is None:
                 tiles.append((e, tile))
         context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
-        return _Round(edges, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi, centre,
-                      tiles, *context, lo_tol, hi_tol)
+        return _Round(edges, fact, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi,
+                      centre, tiles, *context, lo_tol, hi_tol)
 
     def _kept(self, v, i, w, j) -> bool:
         """Whether slot (v, i) to (w, j) is an edge the host has now (not one to draw)."""
@@ -508,7 +508,7 @@ class Solver:
             if max(1, k_lo) <= k_hi:
                 k = min(max(k, k_lo), k_hi)
             vals.append(k * tile)
-        A2, A2p = rd.pinned_system(nF)
+        A2, A2p = rd.fact.pinned_system(tuple(e for e, _ in rd.tiles), nF)
         b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
         y = x + A2p.dot(b2 - A2.dot(x))
@@ -598,10 +598,11 @@ class _Round:
     and constants: free vertices' base coordinates (old: where they are, new: their aim, nan:
     no aim, the change's centre per sample), which coordinates are new; edge lengths known in
     advance (fixed, or kept; nan: drawn), their class bounds, where drawn ones are centred,
-    the tiled edges; what the crossing tests leave out. Draw ranges and the tile-pinned
-    system are made once, when first needed."""
+    the tiled edges; what the crossing tests leave out. Draw ranges are made once, when
+    first needed."""
 
     edges: list
+    fact: Factor
     A: np.ndarray
     b: np.ndarray
     scale: np.ndarray
@@ -618,7 +619,6 @@ class _Round:
     lo_tol: list             # the class bounds widened by the tolerance
     hi_tol: list
     _ranges: dict = field(default_factory=dict)
-    _pinned: tuple | None = None
 
     def ranges(self, f: float) -> tuple[list, list, list]:
         """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
@@ -641,17 +641,6 @@ class _Round:
             r = self._ranges[f] = (los, his, widths)
         return r
 
-    def pinned_system(self, nF: int) -> tuple[np.ndarray, np.ndarray]:
-        """A with a row pinning each tiled length, and its pseudo-inverse: the same for every
-        sample of the round (only the pinned values change)."""
-        if self._pinned is None:
-            rows = np.zeros((len(self.tiles), self.A.shape[1]))
-            for r, (e, _) in enumerate(self.tiles):
-                rows[r, 2 * nF + e] = 1.0
-            A2 = np.vstack([self.A, rows])
-            self._pinned = (A2, np.linalg.pinv(A2, rcond=1e-10))
-        return self._pinned
-
 
 @dataclass(frozen=True)
 class Factor:
@@ -668,6 +657,21 @@ class Factor:
     absR: np.ndarray
     Mp_len: np.ndarray       # the rows of Mp and of the scales for the lengths
     scale_len: np.ndarray
+    # By tiled edges: the system with their lengths pinned. Kept with the shape, since the
+    # same tiled edges come back with it (castle: 969 of 1,367 pinned systems were repeats).
+    _pinned: dict = field(default_factory=dict)
+
+    def pinned_system(self, tiled: tuple[int, ...], nF: int) -> tuple[np.ndarray, np.ndarray]:
+        """A with a row pinning each tiled length, and its pseudo-inverse: the same for every
+        sample (only the pinned values change)."""
+        pinned = self._pinned.get(tiled)
+        if pinned is None:
+            rows = np.zeros((len(tiled), self.A.shape[1]))
+            for r, e in enumerate(tiled):
+                rows[r, 2 * nF + e] = 1.0
+            A2 = np.vstack([self.A, rows])
+            pinned = self._pinned[tiled] = (A2, np.linalg.pinv(A2, rcond=1e-10))
+        return pinned
 
 
 class SystemCache:
