@@ -40,7 +40,7 @@ from grammar_lang.algorithms.components import DisjointSet
 
 from .change import Change, HostView
 from .rejections import Rejection
-from .spatial import Point, seg_distance, seg_near
+from .spatial import Point, seg_distance
 
 I_ROUNDS, J_SAMPLES = 5, 10
 # Column scales of the weighted projection: a larger scale is cheaper to move.
@@ -546,17 +546,19 @@ class Solver:
                 if ((p[0] - p2[0]) ** 2 + (p[1] - p2[1]) ** 2) ** 0.5 < clr:     # _dist, inline
                     self._fail(Rejection.COINCIDENT)
                     return False
+        # Each edge with its box (the low ends less the clearance, as in _host_box).
         segs = []
         for v, _, w, _, _, _ in edges:
             a, c = pos.get(v), pos.get(w)
-            segs.append((v, w, hpos[v] if a is None else a, hpos[w] if c is None else c))
-        # Edges: no crossing or touching except at a shared end. The boxes are compared here,
-        # in seg_near's own terms, since most candidates are far.
-        boxes = self._boxes
-        for k, (v, w, a, c) in enumerate(segs):
+            a = hpos[v] if a is None else a
+            c = hpos[w] if c is None else c
             lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
             ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
-            lx, ly = lx - clr, ly - clr
+            segs.append((v, w, a, c, lx - clr, ly - clr, hx, hy))
+        # Edges: no crossing or touching except at a shared end. Boxes first, since most
+        # candidates are far: boxes farther apart than the clearance hold no closer pair.
+        boxes = self._boxes
+        for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
             for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
                 if key in ignore:
                     continue
@@ -571,10 +573,12 @@ class Solver:
                 if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
-            for v2, w2, a2, c2 in segs[k + 1:]:
+            for v2, w2, a2, c2, lx2, ly2, hx2, hy2 in segs[k + 1:]:
                 if v2 == v or v2 == w or w2 == v or w2 == w:
                     continue
-                if seg_near(a, c, a2, c2, clr):
+                if lx > hx2 or lx2 > hx or ly > hy2 or ly2 > hy:
+                    continue
+                if seg_distance(a, c, a2, c2) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
         return True
