@@ -358,16 +358,17 @@ class Solver:
 
     def _target_box(self, rd: "_Round") -> tuple[np.ndarray, np.ndarray]:
         """Middle and half-width of the box `_targets` draws from (3σ for positions)."""
-        cx, cy = self._box_centre
+        mid = rd.targets_at(self._box_centre)
+        half = [0.0] * len(mid)
         u = 1.5 * self.scale
-        mid = [((cy if k & 1 else cx) if p != p else p) for k, p in enumerate(rd.base)]
-        half = [u if n else 0.0 for n in rd.new]
+        for k in rd.moving:
+            half[k] = u
         a = rd.ranges(SHRINK ** (self.J - 1))[0]
         bb = rd.ranges(1.0)[1]
-        for e, kn in enumerate(rd.known):
-            drawn = kn != kn
-            mid.append(0.5 * (a[e] + bb[e]) if drawn else kn)
-            half.append(0.5 * (bb[e] - a[e]) if drawn else 0.0)
+        n = len(rd.base)
+        for e, lo, hi in zip(rd.drawn, a, bb):
+            mid[n + e] = 0.5 * (lo + hi)
+            half[n + e] = 0.5 * (hi - lo)
         return np.array(mid), np.array(half)
 
     def _draw_centre(self, lab: int) -> float:
@@ -383,33 +384,37 @@ class Solver:
         """What stays the same for every sample of a round. Plain lists: they hold a few
         dozen numbers, where a numpy call costs more than the loop."""
         host, t = self.host, self.host.t
-        nan = math.nan
-        base, new = [], []      # old vertices: where they are; new: their aim (nan: none)
+        base, moving, aimless = [], [], []      # see _Round
         for v in free:
             p = host.pos.get(v)
-            fresh = p is None
-            if fresh:
+            if p is None:
+                k = len(base)
+                moving += (k, k + 1)
                 p = self.aim.get(v)
-            base.extend((nan, nan) if p is None else p)
-            new.extend((fresh, fresh))
-        known = []              # fixed lengths, and lengths of existing edges (nan: drawn)
-        lo, hi, centre, tiles, lo_tol, hi_tol = [], [], [], [], [], []
+                if p is None:
+                    aimless += (k, k + 1)
+                    p = (math.nan, math.nan)
+            base.extend(p)
+        known, drawn = [], []
+        lo, hi, tiles, lo_tol, hi_tol = [], [], [], [], []
         for e, edge in enumerate(edges):
             lab = edge[-1]
             l, h, fixed, tile = t.lengths[lab]
             lo.append(l)
             hi.append(h)
-            centre.append(self._draw_centre(lab))
             kn = self._known(*edge)
             known.append(kn)
+            if kn != kn:
+                drawn.append(e)
             lt, ht = self._bounds(lab, kn)
             lo_tol.append(lt)
             hi_tol.append(ht)
             if tile and fixed is None:
                 tiles.append((e, tile))
+        centre = [self._draw_centre(edges[e][-1]) for e in drawn]
         context = self._planar_context(free) if self.strict else (frozenset(), frozenset())
-        return _Round(edges, fact, fact.A, b, fact.scale, fact.Mp, base, new, known, lo, hi,
-                      centre, tiles, *context, lo_tol, hi_tol)
+        return _Round(edges, fact, fact.A, b, fact.scale, fact.Mp, base, moving, aimless,
+                      known, drawn, lo, hi, centre, tiles, *context, lo_tol, hi_tol)
 
     def _kept(self, v, i, w, j) -> bool:
         """Whether slot (v, i) to (w, j) is an edge the host has now (not one to draw)."""
@@ -448,16 +453,15 @@ class Solver:
     def _targets(self, rd: "_Round", f: float = 1.0) -> np.ndarray:
         rng = self.rng
         noise = rng.normal(0.0, 0.5 * self.scale * f, size=len(rd.base)).tolist()
-        cx, cy = self.center()          # asked every sample: a floating part's draws a place
-        x = []
-        for k, p in enumerate(rd.base):
-            if p != p:                  # no aim: the change's centre
-                p = cy if k & 1 else cx
-            x.append(p + noise[k] if rd.new[k] else p)
+        # Asked every sample: a floating part's centre draws a place.
+        x = rd.targets_at(self.center())
+        for k in rd.moving:
+            x[k] += noise[k]
         draws = rng.random(len(rd.known)).tolist()
         a, _, width = rd.ranges(f)
-        for e, kn in enumerate(rd.known):
-            x.append(a[e] + width[e] * draws[e] if kn != kn else kn)
+        n = len(rd.base)
+        for e, lo, w in zip(rd.drawn, a, width):
+            x[n + e] = lo + w * draws[e]
         return np.array(x)
 
     def _sample(self, free, rd: "_Round", f: float = 1.0) -> dict[int, Point] | None:
@@ -600,10 +604,11 @@ class Solver:
 class _Round:
     """A round's system (its edges, matrix, right-hand side, column scales, pseudo-inverse)
     and constants: free vertices' base coordinates (old: where they are, new: their aim, nan:
-    no aim, the change's centre per sample), which coordinates are new; edge lengths known in
-    advance (fixed, or kept; nan: drawn), their class bounds, where drawn ones are centred,
-    the tiled edges; what the crossing tests leave out. Draw ranges are made once, when
-    first needed."""
+    no aim, the change's centre per sample), which coordinates are new (`moving`) and which
+    of those have no aim; edge lengths known in advance (fixed, or kept; nan: drawn), which
+    edges are drawn, their class bounds, where drawn ones are centred, the tiled edges; what
+    the crossing tests leave out. Lists of indices, so that a sample's loops visit only the
+    coordinates it changes. Draw ranges are made once, when first needed."""
 
     edges: list
     fact: Factor
@@ -612,11 +617,13 @@ class _Round:
     scale: np.ndarray
     Mp: np.ndarray
     base: list
-    new: list
+    moving: list
+    aimless: list
     known: list
+    drawn: list
     lo: list
     hi: list
-    centre: list
+    centre: list             # per drawn edge
     tiles: list
     gone: frozenset          # what the crossing tests leave out (_planar_context)
     ignore: frozenset
@@ -624,16 +631,27 @@ class _Round:
     hi_tol: list
     _ranges: dict = field(default_factory=dict)
 
+    def targets_at(self, centre: Point) -> list:
+        """The base coordinates, those without an aim at `centre`, then the known lengths
+        (nan where drawn): a new list, for a sample to fill in."""
+        x = self.base + self.known
+        cx, cy = centre
+        for k in self.aimless:
+            x[k] = cy if k & 1 else cx
+        return x
+
     def ranges(self, f: float) -> tuple[list, list, list]:
         """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
-        width). Within (1 ± SPREAD)·centre·f, inside the class's range, or the whole class
-        when that misses it; when a shrunk range falls below the class, its shortest length."""
+        width) per drawn edge. Within (1 ± SPREAD)·centre·f, inside the class's range, or the
+        whole class when that misses it; when a shrunk range falls below the class, its
+        shortest length."""
         r = self._ranges.get(f)
         if r is None:
             los, his, widths = [], [], []
             # Asked for most samples (each failure changes f): max and min written out, as
             # the builtins decide them (a later argument wins only when strictly beyond).
-            for lo, hi, c in zip(self.lo, self.hi, self.centre):
+            for e, c in zip(self.drawn, self.centre):
+                lo, hi = self.lo[e], self.hi[e]
                 a, bb = _LOW * c * f, _HIGH * c * f
                 a = a if a > lo else lo
                 bb = bb if bb < hi else hi
