@@ -535,34 +535,35 @@ class Solver:
 
     def _planar(self, pos: dict[int, Point], edges, rd: "_Round") -> bool:
         # Each test only asks whether some pair is too close, so the order in which pairs are
-        # tried does not matter: the first one found decides.
-        host = self.host
-        hpos, grid = host.pos, host.grid
+        # tried does not matter: the first one found decides. The new parts among themselves
+        # come first: they need no grid, and most samples that fail cross themselves.
         clr = self.clearance
-        gone, ignore = rd.gone, rd.ignore
         # Vertices: no two may coincide.
         pts = list(pos.values())
         for k, p in enumerate(pts):
-            if grid.point_within(p, clr, gone):
-                self._fail(Rejection.COINCIDENT)
-                return False
             for p2 in pts[k + 1:]:
                 if ((p[0] - p2[0]) ** 2 + (p[1] - p2[1]) ** 2) ** 0.5 < clr:     # _dist, inline
                     self._fail(Rejection.COINCIDENT)
                     return False
-        # Each edge with its box (the low ends less the clearance, as in _host_box).
-        segs = []
-        for v, _, w, _, _, _ in edges:
-            a, c = pos.get(v), pos.get(w)
-            a = hpos[v] if a is None else a
-            c = hpos[w] if c is None else c
-            lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
-            ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
-            segs.append((v, w, a, c, lx - clr, ly - clr, hx, hy))
+        grid = self.host.grid
+        for p in pts:
+            if grid.point_within(p, clr, rd.gone):
+                self._fail(Rejection.COINCIDENT)
+                return False
         # Edges: no crossing or touching except at a shared end. Boxes first, since most
         # candidates are far: boxes farther apart than the clearance hold no closer pair.
-        boxes = self._boxes
+        segs = self._segments(pos, edges)
         for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
+            for v2, w2, a2, c2, lx2, ly2, hx2, hy2 in segs[k + 1:]:
+                if v2 == v or v2 == w or w2 == v or w2 == w:
+                    continue
+                if lx > hx2 or lx2 > hx or ly > hy2 or ly2 > hy:
+                    continue
+                if seg_distance(a, c, a2, c2) < clr:
+                    self._fail(Rejection.CROSSING)
+                    return False
+        boxes, ignore = self._boxes, rd.ignore
+        for v, w, a, c, lx, ly, hx, hy in segs:
             for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
                 if key in ignore:
                     continue
@@ -577,15 +578,21 @@ class Solver:
                 if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
-            for v2, w2, a2, c2, lx2, ly2, hx2, hy2 in segs[k + 1:]:
-                if v2 == v or v2 == w or w2 == v or w2 == w:
-                    continue
-                if lx > hx2 or lx2 > hx or ly > hy2 or ly2 > hy:
-                    continue
-                if seg_distance(a, c, a2, c2) < clr:
-                    self._fail(Rejection.CROSSING)
-                    return False
         return True
+
+    def _segments(self, pos: dict[int, Point], edges) -> list[tuple]:
+        """Each edge of a sample: its ends (ids), their points and its box (the low ends less
+        the clearance, as in _host_box)."""
+        hpos, clr = self.host.pos, self.clearance
+        segs = []
+        for v, _, w, _, _, _ in edges:
+            a, c = pos.get(v), pos.get(w)
+            a = hpos[v] if a is None else a
+            c = hpos[w] if c is None else c
+            lx, hx = (a[0], c[0]) if a[0] < c[0] else (c[0], a[0])
+            ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
+            segs.append((v, w, a, c, lx - clr, ly - clr, hx, hy))
+        return segs
 
     def _host_box(self, key) -> tuple:
         """A host edge's ends (ids), its box (low ends less the clearance) and its end points.
