@@ -100,7 +100,6 @@ class Solver:
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
         self.clearance = host.t.clearance
         self._adjacency: dict[int, list] = {}
-        self._boxes: dict = {}           # host edge → its ends and box, see _host_box
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.culprits: dict[tuple[int, int], int] = {}
@@ -562,18 +561,17 @@ class Solver:
                 if seg_distance(a, c, a2, c2) < clr:
                     self._fail(Rejection.CROSSING)
                     return False
-        boxes, ignore = self._boxes, rd.ignore
+        boxes, link, ignore = grid.boxes, self.host.link, rd.ignore
         for v, w, a, c, lx, ly, hx, hy in segs:
             for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
                 if key in ignore:
                     continue
-                box = boxes.get(key)
-                if box is None:
-                    box = boxes[key] = self._host_box(key)
-                x, y, qhx, qhy, qlx, qly, p, q = box
-                if x == v or x == w or y == v or y == w:
+                qlx, qly, qhx, qhy, p, q = boxes[key]
+                if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy:
                     continue
-                if lx > qhx or qlx > hx or ly > qhy or qly > hy:
+                x = key[0]
+                y = link[x][key[1]][0]
+                if x == v or x == w or y == v or y == w:
                     continue
                 if seg_distance(a, c, p, q) < clr:
                     self._fail(Rejection.CROSSING)
@@ -581,8 +579,8 @@ class Solver:
         return True
 
     def _segments(self, pos: dict[int, Point], edges) -> list[tuple]:
-        """Each edge of a sample: its ends (ids), their points and its box (the low ends less
-        the clearance, as in _host_box)."""
+        """Each edge of a sample: its ends (ids), their points and its box, the low ends
+        less the clearance."""
         hpos, clr = self.host.pos, self.clearance
         segs = []
         for v, _, w, _, _, _ in edges:
@@ -593,18 +591,6 @@ class Solver:
             ly, hy = (a[1], c[1]) if a[1] < c[1] else (c[1], a[1])
             segs.append((v, w, a, c, lx - clr, ly - clr, hx, hy))
         return segs
-
-    def _host_box(self, key) -> tuple:
-        """A host edge's ends (ids), its box (low ends less the clearance) and its end points.
-        Kept for the solver's life, as the adjacency is: the same neighbours are tested by
-        every sample (curl: about 14 candidates per edge, 80 per step)."""
-        host, clr = self.host, self.clearance
-        x = key[0]
-        y = host.link[x][key[1]][0]
-        p, q = host.pos[x], host.pos[y]
-        qlx, qhx = (p[0], q[0]) if p[0] < q[0] else (q[0], p[0])
-        qly, qhy = (p[1], q[1]) if p[1] < q[1] else (q[1], p[1])
-        return x, y, qhx, qhy, qlx - clr, qly - clr, p, q
 
 
 @dataclass

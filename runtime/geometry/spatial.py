@@ -38,6 +38,9 @@ class Grid:
         self._tag_cells: dict[Hashable, dict] = {}  # tag → cell → the points with that tag
         self._tag_of: dict[Hashable, Hashable] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
+        # Segment id → (low x, low y, high x, high y, end, end): its box, made once when it is
+        # filed, for the crossing tests of every sample that comes near it. Read, don't change.
+        self.boxes: dict[Hashable, tuple] = {}
         self._pts: dict[Hashable, Point] = {}
         # Occupied columns and rows (point counts), for bounds and ray casts.
         self._cols: dict[int, int] = {}
@@ -63,6 +66,9 @@ class Grid:
     # --- segments ---------------------------------------------------------------------------
     def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
         self._segs[sid] = (a, b)
+        lx, hx = (a[0], b[0]) if a[0] < b[0] else (b[0], a[0])
+        ly, hy = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
+        self.boxes[sid] = (lx, ly, hx, hy, a, b)
         cells = self._seg_cells
         for k in self.box_cells(a[0], a[1], b[0], b[1]):
             cell = cells.get(k)
@@ -73,6 +79,7 @@ class Grid:
 
     def remove_segment(self, sid: Hashable) -> None:
         a, b = self._segs.pop(sid)
+        del self.boxes[sid]
         for k in self.box_cells(a[0], a[1], b[0], b[1]):
             cell = self._seg_cells[k]
             cell.discard(sid)
