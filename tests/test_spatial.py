@@ -63,7 +63,8 @@ def test_ray_left_finds_what_brute_force_finds(cell, pieces, removed, rays, tol)
 @settings(max_examples=200, deadline=None)
 @given(pts=st.lists(point, max_size=30), moves=st.lists(st.tuples(st.integers(0, 29), point),
                                                         max_size=10),
-       probes=st.lists(point, min_size=1, max_size=8), r=st.sampled_from([0.1, 0.5, 2.0]))
+       probes=st.lists(point, min_size=1, max_size=8),
+       r=st.sampled_from([0.1, 0.25, 0.5, 2.0]))   # up to fine/2: one cell read
 def test_point_within_agrees_with_brute_force(pts, moves, probes, r):
     g = Grid(1.0, fine=0.5)
     where = {}

@@ -7,8 +7,10 @@ sorted, so nothing depends on insertion or hash order.
 Points are also filed in much finer cells (side `fine`, a couple of clearances): the test for a
 vertex on top of another looks at a radius of one clearance, and as a drawing fills in, a unit
 cell comes to hold dozens of vertices (curl at 20,000 vertices: 17 a cell, against 5 at 1,000).
-That test is exact, so it does not depend on the cells; the coarse cells stay as they are for
-the queries whose answer is a superset that depends on them (candidates, bounds).
+A point is filed in every fine cell within fine/2 of it (one to four), so that a test of a
+radius up to fine/2 reads one cell: it runs for every new vertex of every sample, a vertex is
+filed once. That test is exact, so it does not depend on the cells; the coarse cells stay as
+they are for the queries whose answer is a superset that depends on them (candidates, bounds).
 """
 
 from __future__ import annotations
@@ -36,6 +38,9 @@ class Grid:
         self._tag_cells: dict[Hashable, dict] = {}  # tag → cell → the points with that tag
         self._tag_of: dict[Hashable, Hashable] = {}
         self._segs: dict[Hashable, tuple[Point, Point]] = {}
+        # Segment id → (low x, low y, high x, high y, end, end): its box, made once when it is
+        # filed, for the crossing tests of every sample that comes near it. Read, don't change.
+        self.boxes: dict[Hashable, tuple] = {}
         self._pts: dict[Hashable, Point] = {}
         # Occupied columns and rows (point counts), for bounds and ray casts.
         self._cols: dict[int, int] = {}
@@ -61,6 +66,9 @@ class Grid:
     # --- segments ---------------------------------------------------------------------------
     def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
         self._segs[sid] = (a, b)
+        lx, hx = (a[0], b[0]) if a[0] < b[0] else (b[0], a[0])
+        ly, hy = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
+        self.boxes[sid] = (lx, ly, hx, hy, a, b)
         cells = self._seg_cells
         for k in self.box_cells(a[0], a[1], b[0], b[1]):
             cell = cells.get(k)
@@ -71,6 +79,7 @@ class Grid:
 
     def remove_segment(self, sid: Hashable) -> None:
         a, b = self._segs.pop(sid)
+        del self.boxes[sid]
         for k in self.box_cells(a[0], a[1], b[0], b[1]):
             cell = self._seg_cells[k]
             cell.discard(sid)
@@ -121,8 +130,8 @@ class Grid:
         if tag is not None:
             self._tag_of[pid] = tag
             self._tag_cells.setdefault(tag, {}).setdefault(k, set()).add(pid)
-        f = self.fine
-        self._fine_cells.setdefault((math.floor(p[0] / f), math.floor(p[1] / f)), []).append(pid)
+        for fk in self._reach(p):
+            self._fine_cells.setdefault(fk, []).append(pid)
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
             n = d.get(key, 0)
             d[key] = n + 1
@@ -143,12 +152,11 @@ class Grid:
             cell.discard(pid)
             if not cell:
                 del cells[k]
-        f = self.fine
-        fk = (math.floor(p[0] / f), math.floor(p[1] / f))
-        fine = self._fine_cells[fk]
-        fine.remove(pid)
-        if not fine:
-            del self._fine_cells[fk]
+        for fk in self._reach(p):
+            fine = self._fine_cells[fk]
+            fine.remove(pid)
+            if not fine:
+                del self._fine_cells[fk]
         for d, key in ((self._cols, k[0]), (self._rows, k[1])):
             d[key] -= 1
             if not d[key]:
@@ -171,18 +179,33 @@ class Grid:
                     out.extend(s)
         return sorted(out) if ordered else out
 
+    def _reach(self, p: Point) -> list[tuple[int, int]]:
+        """The fine cells within fine/2 of `p`, where it is filed."""
+        f = self.fine
+        h = 0.5 * f
+        i0, i1 = math.floor((p[0] - h) / f), math.floor((p[0] + h) / f)
+        j0, j1 = math.floor((p[1] - h) / f), math.floor((p[1] + h) / f)
+        return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
+
     def point_within(self, p: Point, r: float, skip=()) -> bool:
-        """Is a point not in `skip` closer than `r` to `p`? Exact; `r` about `fine` or less
-        keeps it to a few nearly empty cells."""
-        f, cells, pts = self.fine, self._fine_cells, self._pts
+        """Is a point not in `skip` closer than `r` to `p`? Exact; `r` up to fine/2 reads one
+        cell, a larger one the cells its box touches."""
+        f, fine, pts = self.fine, self._fine_cells, self._pts
         px, py = p
-        for i in range(math.floor((px - r) / f), math.floor((px + r) / f) + 1):
-            for j in range(math.floor((py - r) / f), math.floor((py + r) / f) + 1):
-                for q in cells.get((i, j), ()):
-                    if q not in skip:
-                        x, y = pts[q]
-                        if ((px - x) ** 2 + (py - y) ** 2) ** 0.5 < r:
-                            return True
+        if r <= 0.5 * f:
+            # A point q closer than r has |px − qx| < fine/2, so px lies in q's filed range
+            # [qx − fine/2, qx + fine/2] (rounding is monotonic), and so does p's cell.
+            cells = (fine.get((math.floor(px / f), math.floor(py / f)), ()),)
+        else:
+            cells = [fine.get((i, j), ())
+                     for i in range(math.floor((px - r) / f), math.floor((px + r) / f) + 1)
+                     for j in range(math.floor((py - r) / f), math.floor((py + r) / f) + 1)]
+        for cell in cells:
+            for q in cell:
+                if q not in skip:
+                    x, y = pts[q]
+                    if ((px - x) ** 2 + (py - y) ** 2) ** 0.5 < r:
+                        return True
         return False
 
     def bounds(self) -> tuple[float, float, float, float] | None:
@@ -255,14 +278,6 @@ class Grid:
                 break
             col = nxt
         return None if best is None else (best[2], best[0])
-
-
-def seg_near(a: Point, b: Point, c: Point, d: Point, eps: float) -> bool:
-    """Do segments ab and cd come closer than eps? Boxes first, since most candidates are far."""
-    if (min(a[0], b[0]) - eps > max(c[0], d[0]) or min(c[0], d[0]) - eps > max(a[0], b[0])
-            or min(a[1], b[1]) - eps > max(c[1], d[1]) or min(c[1], d[1]) - eps > max(a[1], b[1])):
-        return False
-    return seg_distance(a, b, c, d) < eps
 
 
 def seg_distance(a: Point, b: Point, c: Point, d: Point) -> float:
