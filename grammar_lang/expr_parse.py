@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lark import Lark, Token, Transformer, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import expr_ast as ast
 
@@ -51,7 +51,12 @@ def parse_expr(text: str) -> ast.Expr:
     except UnexpectedInput as exc:
         raise _syntax_error(exc, text) from None
     _check_depth(tree)
-    expr = _ToAst().transform(tree) if isinstance(tree, Tree) else _token_leaf(tree)
+    try:
+        expr = _ToAst().transform(tree) if isinstance(tree, Tree) else _token_leaf(tree)
+    except VisitError as exc:       # lark wraps what a rule's method raises
+        if isinstance(exc.orig_exc, ExprError):
+            raise exc.orig_exc from None
+        raise
     size, _ = ast.size_and_depth(expr)
     if size > MAX_NODES:
         raise ExprError(f"the expression has {size} parts, at most {MAX_NODES}", 0, 1,

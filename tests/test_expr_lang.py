@@ -242,6 +242,18 @@ def test_evaluation_agrees_with_the_reference(typed_expr, seed):
 # --- errors ------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("text,message", [
+    ("1e3081", "the number 1e3081 is out of range"),
+    ("x + 2e400 * 3", "the number 2e400 is out of range"),
+    ('"a\\qb"', "bad escape in a string"),
+])
+def test_bad_literals_are_expression_errors(text, message):
+    """A literal that cannot be read is the input's fault: an ExprError at the literal, not
+    the parser library's own exception (lark wraps what a rule's method raises)."""
+    with pytest.raises(ExprError, match=re.escape(message)):
+        parse_expr(text)
+
+
+@pytest.mark.parametrize("text,message", [
     ("1 + true", "'+' does not apply to a number and a boolean"),
     ("a.height", "'a' has no attribute 'height'"),
     ("nope(1)", "unknown function 'nope'"),
