@@ -175,8 +175,9 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
 
 def run_job(job: Job, progress=None) -> Summary | None:
     """Generate one drawing and write it; runs in a worker process for --jobs. After Ctrl-C a
-    job still to start, or stopped before its first proposal, does nothing (None), and a
-    running one writes what it has."""
+    job still to start, or stopped before its first applied step, does nothing (None): it
+    has made nothing to keep (its proposals so far were all refused). A running one writes
+    what it has."""
     if interrupt.requested():
         return None
     if job.grammar.is_free:
@@ -190,7 +191,7 @@ def run_job(job: Job, progress=None) -> Summary | None:
                     extent=job.extent)
     summary = engine.run(job.steps, progress, stop=interrupt.requested,
                          iterations=job.iterations)
-    if interrupt.requested() and summary.proposals == 0:
+    if interrupt.requested() and summary.applied == 0:
         return None         # stopped before its first step: as a job still to start
     drawing = engine.host.to_drawing({"grammar": job.name, "seed": job.seed,
                                       "steps": summary.applied})
