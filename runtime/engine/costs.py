@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import Callable, Protocol
 
 from grammar_lang.diagnostics import error
+from grammar_lang.frame import border_labels
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,6 @@ def default_cost(header, steps: int) -> Cost:
 def _scene_groups(header) -> list[tuple[int, ...]]:
     """The edge labels beside each face label but the space's, then each edge class's bare
     lines in the space (border classes aside: the frame is placed once)."""
-    from grammar_lang.frame import border_labels
     labels = header.labels
     corner = header.primitives[header.frame.corners[0].prim]
     space = {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}

@@ -412,8 +412,8 @@ class Solver:
             if tile and fixed is None:
                 tiles.append((e, tile))
         centre = [self._draw_centre(edges[e][-1]) for e in drawn]
-        return _Round(edges, fact, fact.A, b, fact.scale, fact.Mp, base, moving, aimless,
-                      known, drawn, lo, hi, centre, tiles, lo_tol, hi_tol)
+        return _Round(edges, fact, b, base, moving, aimless, known, drawn, lo, hi, centre,
+                      tiles, tuple(e for e, _ in tiles), lo_tol, hi_tol)
 
     def _kept(self, v, i, w, j) -> bool:
         """Whether slot (v, i) to (w, j) is an edge the host has now (not one to draw)."""
@@ -477,7 +477,8 @@ class Solver:
         t = self.host.t
         target = self._targets(rd, f)
         # ndarray.dot: the same BLAS product as @, without the ufunc machinery (half the cost).
-        x = target + rd.scale * rd.Mp.dot(rd.b - rd.A.dot(target))
+        fact = rd.fact
+        x = target + fact.scale * fact.Mp.dot(rd.b - fact.A.dot(target))
         nF = len(free)
         if rd.tiles and self.strict:
             x = self._snap_tiles(x, nF, rd)
@@ -521,7 +522,7 @@ class Solver:
             if max(1, k_lo) <= k_hi:
                 k = min(max(k, k_lo), k_hi)
             vals.append(k * tile)
-        A2, A2p = rd.fact.pinned_system(tuple(e for e, _ in rd.tiles), nF)
+        A2, A2p = rd.fact.pinned_system(rd.tiled, nF)
         b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
         y = x + A2p.dot(b2 - A2.dot(x))
@@ -620,11 +621,8 @@ class _Round:
     and what the crossing tests leave out are made once, when first needed."""
 
     edges: list
-    fact: Factor
-    A: np.ndarray
+    fact: Factor             # the system's matrix, column scales and pseudo-inverse
     b: np.ndarray
-    scale: np.ndarray
-    Mp: np.ndarray
     base: list
     moving: list
     aimless: list
@@ -634,6 +632,7 @@ class _Round:
     hi: list
     centre: list             # per drawn edge
     tiles: list
+    tiled: tuple             # the tiled edges alone: the key of their pinned system
     lo_tol: list             # the class bounds widened by the tolerance
     hi_tol: list
     context: tuple | None = None     # what the crossing tests leave out (_planar_context)
