@@ -60,3 +60,55 @@ def boundary_cycles(xy: np.ndarray, edges: np.ndarray
             h = nxt[h]
         cycles.append(tuple(walk))
     return np.array(cycle_of, dtype=np.int64), cycles
+
+
+
+class FaceWalk:
+    """The face of a graph of rings that a corner lies in, walked from that corner: at most
+    `limit` corners (a random search's bound in a drawing with a huge face).
+
+    `link[v][i]` is the (vertex, slot) glued to slot i of v, or None. Corner (v, i) is the
+    sector of v between slot i and the next slot counter-clockwise; the face goes on along
+    that next slot's edge, into the corner after the slot it reaches (graph.face_walk's rule,
+    on a host instead of a rule side), so it lies on the walk's right. `pos[v]` places v."""
+
+    def __init__(self, link, pos, corner: tuple[int, int], limit: int):
+        self.start = corner
+        walk, v, i = [], *corner
+        self.closed = False
+        for _ in range(limit):
+            walk.append((v, i))
+            s = link[v][(i + 1) % len(link[v])]
+            if s is None:
+                break
+            v, i = s
+            if (v, i) == corner:
+                self.closed = True
+                break
+        self.corners = walk
+        self.at = set(walk)
+        self.vertices = {v for v, _ in walk}
+        # A closed walk with its face on the right that turns clockwise bounds its face from
+        # outside; one that turns the other way (or encloses nothing: a tree) runs round the
+        # outside of its structure, a hole in some face.
+        area = scale = 0.0
+        if self.closed:
+            pts = [pos[v] for v, _ in walk]
+            for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]):
+                area += x0 * y1 - x1 * y0
+                scale += abs(x0 * y1) + abs(x1 * y0)
+        self.encloses = self.closed and area < -1e-9 * scale
+
+    def shares_face(self, other: "FaceWalk") -> bool | None:
+        """Whether the two walks' corners lie in one face: True, False, or None when walks
+        cannot tell (a face's holes are walked apart; which hole lies in which face is a
+        question for the geometry)."""
+        if other.start in self.at or self.start in other.at:
+            return True
+        if not (self.closed or other.closed):
+            return None                 # both cut short: perhaps one walk, longer
+        # Two walks. A connected structure meets each face along one walk only, and a face
+        # has one walk round it from outside.
+        if not self.vertices.isdisjoint(other.vertices) or (self.encloses and other.encloses):
+            return False
+        return None

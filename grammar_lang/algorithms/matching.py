@@ -8,9 +8,9 @@ through two indexables: `link[v][i]`, the (vertex, slot) glued to slot i of v or
 `prim[v]`, v's primitive. Whether a complete placement is a match beyond that (the runtime's
 dangling condition, the compiler's bare-loop test) is the caller's feasibility hook.
 
-The runtime's search over spliced sides (several components and wires, looked for near each
-other through its spatial grid, with a budget) is a layer over `extend`; it stays in the
-runtime because it needs the drawing's geometry.
+The runtime's search over spliced sides (several components and wires, found along the host
+faces they share, `faces.corners`, or near each other through its spatial grid, with a budget)
+is a layer over `extend`; it stays in the runtime because the grid is the drawing's geometry.
 """
 
 from __future__ import annotations

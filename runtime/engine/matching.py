@@ -6,9 +6,12 @@ of the same primitive, following the pattern's glued slots through the host's li
 other vertex of that component, or fails, in time linear in the pattern (paper §6.1). Matching
 starts from the pattern's primitive with the fewest host instances and never scans the drawing:
 a random match tries candidates from a random offset of that primitive's index (or a few
-random anchors, for a cheap probe), and the further components and wires of a spliced side are
-looked for near the first, nearest first, through the grid. Whether spliced parts really share
-a face is left to the placement, whose crossing and face-label tests decide it exactly.
+random anchors, for a cheap probe). The further components and wires of a spliced side are
+looked for along the host face the boundary says they face (`_on_face`): the face is walked
+from the part already matched, so parts that face each other across it are found at any
+distance, and a place on the wrong side of a line is never proposed. Only what the walk cannot
+tell (a face's holes, other components) is looked for near the parts through the grid and left
+to the placement's crossing and face-label tests.
 """
 
 from __future__ import annotations
@@ -18,14 +21,11 @@ from typing import Iterator
 
 import numpy as np
 
+from grammar_lang.algorithms.faces import FaceWalk
 from grammar_lang.algorithms.matching import extend, walk_plans
 from grammar_lang.graph import Side, Slot
 
 from .host import Host
-
-# How far (in units) the components of a spliced side may lie from each other.
-SPLICE_RADIUS = 2.0
-
 
 @dataclass(frozen=True)
 class Component:
@@ -43,17 +43,56 @@ class Pattern:
     # A wire (bare edge) matches a host edge of its label: per wire, the (primitive, slot)
     # pairs where its end-0 partner, a barred half-edge, can sit.
     wire_slots: tuple[tuple[tuple[int, int], ...], ...] = ()
+    # The parts (components 0.., then wires: len(components) + e) in the order they are
+    # matched: the first component (else wire), then the others as the boundary meets them.
+    order: tuple[int, ...] = ()
+    # For each part of `order` after the first: the boundary item before its first item, and
+    # that item (the part is looked for on the host face between them); None for a part with
+    # no open slot, looked for anywhere.
+    entries: tuple[tuple[Slot, Slot] | None, ...] = ()
+    # The other steps of the boundary from one part to the next: each crosses one host face.
+    jumps: tuple[tuple[Slot, Slot], ...] = ()
 
     @staticmethod
     def build(side: Side, rings=()) -> "Pattern":
         partner = side.partner()
-        comps = tuple(Component(tuple(verts), walk_plans(verts, partner))
-                      for verts in side.components())
+        verts = side.components()
+        comps = tuple(Component(tuple(vs), walk_plans(vs, partner)) for vs in verts)
         opens = tuple(side.open_slots())
         wire_slots = tuple(
             tuple((p, i) for p, ring in enumerate(rings) for i, t in enumerate(ring) if t == tok ^ 1)
             for tok in side.wires)
-        return Pattern(side, comps, opens, wire_slots)
+        order, entries, jumps = _splice_plan(side, verts, opens)
+        return Pattern(side, comps, opens, wire_slots, order, entries, jumps)
+
+
+def _splice_plan(side: Side, verts: list[list[int]], opens: tuple[Slot, ...]):
+    """`order`, `entries` and `jumps` of a Pattern: how the parts of a spliced side follow
+    each other along its boundary (paper §4.2: one walk, the parts facing each other)."""
+    comp_of = {v: c for c, vs in enumerate(verts) for v in vs}
+    part = [comp_of[v] if v >= 0 else len(verts) - 1 - v for v, _ in opens]
+    n_parts = len(verts) + len(side.wires)
+    if n_parts == 0:
+        return (), (), ()
+    order, entries = [0], [None]
+    n = len(opens)
+    start = part.index(0) if 0 in part else 0
+    if n and 0 not in part:         # the first part has no open slot: the next is anywhere too
+        order.append(part[0])
+        entries.append(None)
+    for j in range(start + 1, start + n):
+        p = part[j % n]
+        if p not in order:
+            order.append(p)
+            entries.append((opens[(j - 1) % n], opens[j % n]))
+    entered = set(entries)
+    jumps = tuple((opens[j - 1], opens[j]) for j in range(n) if part[j - 1] != part[j]
+                  and (opens[j - 1], opens[j]) not in entered)
+    for p in range(n_parts):        # parts without an open slot: anywhere
+        if p not in order:
+            order.append(p)
+            entries.append(None)
+    return tuple(order), tuple(entries), jumps
 
 
 @dataclass(frozen=True)
@@ -91,16 +130,6 @@ def _anchor(host: Host, pattern: Pattern, comp: Component) -> int:
     return min(range(len(counts)), key=lambda k: (counts[k], k))
 
 
-def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
-                     near: dict | None):
-    prim = pattern.side.vertices[comp.vertices[k]]
-    if near is None:
-        return host.by_prim[prim]
-    # Later components of a splice: only vertices near the part already matched, nearest
-    # first (the order is by distance and id, so the grid's order does not matter).
-    return _nearest_first(host, _near(host, near, prim), near)
-
-
 class _Budget:
     """How many candidate extensions a random search may try before it gives up (spliced
     sides can otherwise multiply candidates); exhaustive searches have no budget."""
@@ -118,26 +147,60 @@ class _Budget:
 
 RANDOM_BUDGET = 300
 PROBE_BUDGET = 40
+# How far (in units) the components of a spliced side may lie from each other when the face
+# walk cannot tell whether they face each other (see _on_face).
+SPLICE_RADIUS = 2.0
+# How many corners of a face a random search walks to find the next part of a splice: a
+# bound on the work of one proposal in a drawing with a huge face (a tree's outer face).
+FACE_WALK = 600
 
 
-def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
-            rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, tuple]]:
-    if ci == len(pattern.components):
-        if _glue_ok(host, pattern, vmap, spo):
-            yield from _search_wires(host, pattern, 0, vmap, (), rng, budget)
+def _search(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, spo: bool,
+            rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, dict]]:
+    """Matches extending `vmap` (pattern vertex → host vertex) and `wmap` (wire → its host
+    edge's slots) by the parts of pattern.order from the k-th on. Wires may share end
+    vertices, not slots; no wire ends on a vertex of the match."""
+    if k == len(pattern.order):
+        if _glue_ok(host, pattern, vmap, spo) and _faces_shared(host, pattern, vmap, wmap,
+                                                                _walk_limit(host, rng)):
+            yield vmap, wmap
         return
-    comp = pattern.components[ci]
-    k = _anchor(host, pattern, comp)
-    cands = _comp_candidates(host, pattern, comp, k, vmap if ci else None)
+    part, n_comps = pattern.order[k], len(pattern.components)
+    if k and pattern.entries[k] is not None:
+        found = _on_face(host, pattern, k, vmap, wmap, rng)
+    elif part < n_comps:
+        found = _any_instance(host, pattern, part, rng, budget if not k else _Budget(None))
+    else:
+        found = _any_wire(host, pattern, part - n_comps, rng)
+    image = set(vmap.values())
+    ends = {s[0] for pair in wmap.values() for s in pair}
+    for cand in found:
+        if k and not budget.spend():
+            return
+        if part < n_comps:
+            anchor, h = cand
+            comp = pattern.components[part]
+            trial = dict(vmap)
+            if extend(host.link, host.prim, pattern.side.vertices,
+                      comp.plans[comp.vertices.index(anchor)], anchor, h, trial) \
+                    and ends.isdisjoint(trial[v] for v in comp.vertices):
+                yield from _search(host, pattern, k + 1, trial, wmap, spo, rng, budget)
+        elif cand[0][0] not in image and cand[1][0] not in image \
+                and all(cand[0] not in pair for pair in wmap.values()):
+            yield from _search(host, pattern, k + 1, vmap, {**wmap, part - n_comps: cand},
+                               spo, rng, budget)
+
+
+def _any_instance(host: Host, pattern: Pattern, part: int, rng, budget: _Budget):
+    """(anchor, host vertex) candidates for a component found anywhere: every instance of
+    its rarest primitive, from a random one on (or a few random ones, for a probe)."""
+    comp = pattern.components[part]
+    anchor = comp.vertices[_anchor(host, pattern, comp)]
+    cands = host.by_prim[pattern.side.vertices[anchor]]
     n = len(cands)
     if n == 0:
-        return
-    if ci:
-        # Later parts of a splice: nearest first (as _comp_candidates gives them), since a
-        # splice joins parts facing each other across one face, and the nearest candidates
-        # are the likeliest to see the first part.
-        order = cands
-    elif rng is None:
+        return ()
+    if rng is None:
         order = sorted(cands)
     else:
         start = int(rng.integers(n))
@@ -146,53 +209,128 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
             order = (cands[int(j)] for j in rng.integers(n, size=min(n, budget.probes)))
         else:
             order = (cands[(start + m) % n] for m in range(n))
-    anchor = comp.vertices[k]
-    for h in order:
-        if ci and not budget.spend():
-            return
-        trial = dict(vmap)
-        if extend(host.link, host.prim, pattern.side.vertices, comp.plans[k], anchor, h, trial):
-            yield from _search(host, pattern, ci + 1, trial, spo, rng, budget)
+    return ((anchor, h) for h in order)
 
 
-def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tuple,
-                  rng: np.random.Generator | None, budget: _Budget) -> Iterator[tuple[dict, tuple]]:
-    if wi == len(pattern.wire_slots):
-        yield vmap, wires
-        return
-    image = set(vmap.values())
-    taken = {s for pair in wires for s in pair}
-    lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[wi]]
-    placed = dict(vmap)
-    placed.update({("w", k): s[0] for k, pair in enumerate(wires) for s in pair})
-    if placed:
-        # Beside parts already matched, look for the wire nearby only: the vertices the grid
-        # finds there, by primitive (not a scan of the primitive's whole index).
-        by_prim = {p: _near(host, placed, p) for p, _ in pattern.wire_slots[wi]}
-        lists = [(i, by_prim[p]) for p, i in pattern.wire_slots[wi]]
+def _any_wire(host: Host, pattern: Pattern, e: int, rng):
+    """(barred, unbarred) host slot candidates for wire `e` found anywhere: every host edge
+    of its label, walked in place from a random one on (listing them all would cost
+    O(drawing) for a search that usually stops at the first)."""
+    lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[e]]
     total = sum(len(lst) for _, lst in lists)
     if total == 0:
         return
-    if placed:
-        cx, cy = _centroid(host, placed)
-        pos = host.pos
-        flat = [(h, i) for _, h, i in sorted(
-            ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h, i) for i, lst in lists
-            for h in lst)]
-    elif rng is not None:
-        # Every host edge of the label, from a random one on: walked in place, since listing
-        # them all would cost O(drawing) for a search that usually stops at the first.
-        flat = _rotated(lists, int(rng.integers(total)))
-    else:
-        flat = ((h, i) for i, lst in lists for h in lst)
+    flat = _rotated(lists, int(rng.integers(total))) if rng is not None else \
+        ((h, i) for i, lst in lists for h in lst)
     for h, i in flat:
         s1 = host.link[h][i]
-        s0 = (h, i)
-        if s1 is None or h in image or s1[0] in image or s0 in taken:
-            continue
-        if placed and not budget.spend():
-            return
-        yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng, budget)
+        if s1 is not None:
+            yield (h, i), s1
+
+
+def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
+    """Candidates for the k-th part of a splice: where its first boundary item can follow the
+    item before it across one host face (the parts of a spliced side face each other, paper
+    §4.2). Places on the walk of that face come first, nearest first, at any distance (a
+    village's strip faces a line 160 px across it); then places near the parts matched, seen
+    through the grid, unless their own face walk shows them on another face: what walks
+    cannot tell (a face's holes: other structures) is left to the placement's crossing and
+    face-label tests."""
+    prev, (v, i) = pattern.entries[k]
+    t, link, prim = host.t, host.link, host.prim
+    limit = _walk_limit(host, rng)
+    wire = pattern.order[k] >= len(pattern.components)
+    if wire:
+        tok = pattern.side.wires[-1 - v] ^ i        # the token the item carries
+    else:
+        want = pattern.side.vertices[v]
+    entry = FaceWalk(link, host.pos, _corner(host, prev, vmap, wmap, True), limit)
+    out = []
+    for u, c in entry.corners:
+        nxt = (c + 1) % len(link[u])
+        if wire:
+            # The face reaches a wire item just before the host slot at the edge's far end,
+            # which carries the item's own token: the unbarred end for item (e, 0).
+            if t.rings[prim[u]][nxt] == tok and link[u][nxt] is not None:
+                s = (u, nxt)
+                out.append((link[u][nxt], s) if i == 0 else (s, link[u][nxt]))
+        elif nxt == i and prim[u] == want:
+            out.append((v, u))
+    placed = {**vmap, **{("w", e, j): s[0] for e, pair in wmap.items()
+                         for j, s in enumerate(pair)}}
+    near = []
+    if wire:
+        for p, j in pattern.wire_slots[-1 - v]:
+            for h in _near(host, placed, p):
+                s1 = link[h][j]
+                if s1 is not None and h not in entry.vertices and s1[0] not in entry.vertices:
+                    near.append(((h, j), s1))
+    else:
+        near = [(v, h) for h in _near(host, placed, want) if h not in entry.vertices]
+    yield from _nearest_first(host, out, placed, wire)
+    item = pattern.entries[k][1]
+    for cand in _nearest_first(host, near, placed, wire):
+        at = _corner(host, item, {v: cand[1]} if not wire else {},
+                     {-1 - v: cand} if wire else {}, False)
+        if entry.shares_face(FaceWalk(link, host.pos, at, limit)) is not False:
+            yield cand
+
+
+def _nearest_first(host: Host, cands: list, placed: dict, wire: bool) -> list:
+    """`cands` by distance from the parts already matched, then by vertex and slot (so the
+    grid's order does not matter): of the places a face offers, the nearest is the one a
+    rule's few edges can bridge."""
+    if len(cands) < 2:
+        return cands
+    pos = host.pos
+    pts = [pos[h] for h in placed.values()]
+    cx = sum(p[0] for p in pts) / len(pts)
+    cy = sum(p[1] for p in pts) / len(pts)
+    keyed = []
+    for c in cands:
+        h = c[0] if wire else (c[1], 0)
+        p = pos[h[0]]
+        keyed.append(((p[0] - cx) ** 2 + (p[1] - cy) ** 2, h, c))
+    keyed.sort(key=lambda kc: kc[:2])
+    return [c for _, _, c in keyed]
+
+
+def _near(host: Host, near: dict, prim: int) -> list[int]:
+    """The vertices of primitive `prim` within the splice radius of the box around the host
+    vertices `near` (the grid's cells: a superset), in no particular order."""
+    xs = [host.pos[h][0] for h in near.values()]
+    ys = [host.pos[h][1] for h in near.values()]
+    r = SPLICE_RADIUS * host.t.unit
+    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, False,
+                                 prim)
+
+
+def _corner(host: Host, item: Slot, vmap: dict, wmap: dict, after: bool) -> Slot:
+    """The host corner a boundary item's walk leaves into (`after`) or comes from. A wire
+    item (e, 0) is glued to the barred end of its host edge, (e, 1) to the other."""
+    v, i = item
+    if v >= 0:
+        h = vmap[v]
+        return (h, i) if after else (h, (i - 1) % len(host.link[h]))
+    s = wmap[-1 - v][0 if (i == 0) == after else 1]
+    return s[0], (s[1] - 1) % len(host.link[s[0]])
+
+
+def _faces_shared(host: Host, pattern: Pattern, vmap: dict, wmap: dict, limit: int) -> bool:
+    """Whether no step of the boundary from one part to another is known to cross between
+    two faces (see FaceWalk.shares_face)."""
+    for a, b in pattern.jumps:
+        goal = _corner(host, b, vmap, wmap, False)
+        walk = FaceWalk(host.link, host.pos, _corner(host, a, vmap, wmap, True), limit)
+        if goal not in walk.at and \
+                walk.shares_face(FaceWalk(host.link, host.pos, goal, limit)) is False:
+            return False
+    return True
+
+
+def _walk_limit(host: Host, rng) -> int:
+    # An exhaustive search walks whole faces; a random one a bounded stretch of each.
+    return FACE_WALK if rng is not None else 2 * host.n_edges + 2
 
 
 def _rotated(lists: list[tuple[int, list]], start: int) -> Iterator[tuple[int, int]]:
@@ -208,33 +346,10 @@ def _rotated(lists: list[tuple[int, list]], start: int) -> Iterator[tuple[int, i
                 yield lst[k], i
 
 
-def _centroid(host: Host, placed: dict) -> tuple[float, float]:
-    cx = sum(host.pos[v][0] for v in placed.values()) / len(placed)
-    cy = sum(host.pos[v][1] for v in placed.values()) / len(placed)
-    return cx, cy
-
-
-def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
-    cx, cy = _centroid(host, placed)
-    pos = host.pos
-    # Decorated: the same (distance, id) order as a key function, without a call per vertex.
-    return [h for _, h in sorted([((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h)
-                                  for h in cands])]
-
-
-def _near(host: Host, near: dict, prim: int) -> list[int]:
-    """The vertices of primitive `prim` within the splice radius of the box around the host
-    vertices `near` (the grid's cells: a superset), in no particular order."""
-    xs = [host.pos[h][0] for h in near.values()]
-    ys = [host.pos[h][1] for h in near.values()]
-    r = SPLICE_RADIUS * host.t.unit
-    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, False,
-                                 prim)
-
-
 def _match(pattern: Pattern, found) -> Match:
-    vmap, wires = found
-    return Match(tuple(vmap[v] for v in range(len(pattern.side.vertices))), wires)
+    vmap, wmap = found
+    return Match(tuple(vmap[v] for v in range(len(pattern.side.vertices))),
+                 tuple(wmap[e] for e in range(len(pattern.side.wires))))
 
 
 def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
@@ -242,7 +357,7 @@ def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
     """A random match, or None when none was found within the search budget (a budget only
     binds for spliced sides, whose later components multiply the candidates). With `probes`,
     only that many random anchors are tried: cheap, but None then proves nothing."""
-    for found in _search(host, pattern, 0, {}, spo, rng, _Budget(RANDOM_BUDGET, probes)):
+    for found in _search(host, pattern, 0, {}, {}, spo, rng, _Budget(RANDOM_BUDGET, probes)):
         return _match(pattern, found)
     return None
 
@@ -250,7 +365,7 @@ def find_match(host: Host, pattern: Pattern, rng: np.random.Generator,
 def iter_matches(host: Host, pattern: Pattern, spo: bool = False) -> Iterator[Match]:
     """Every match, in a deterministic order (ascending anchor vertex ids)."""
     seen = set()
-    for found in _search(host, pattern, 0, {}, spo, None, _Budget(None)):
+    for found in _search(host, pattern, 0, {}, {}, spo, None, _Budget(None)):
         m = _match(pattern, found)
         # Automorphic images of the same vertex set are distinct matches; only exact
         # duplicates (found through two anchors) are dropped.
