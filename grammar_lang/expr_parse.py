@@ -17,6 +17,7 @@ from lark import Lark, Token, Transformer, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken, VisitError
 
 from . import expr_ast as ast
+from .lark_cache import lalr_parser
 
 MAX_TEXT = 2000         # characters in one expression
 MAX_DEPTH = 40          # nesting of the syntax tree
@@ -37,9 +38,8 @@ class ExprError(Exception):
 
 @functools.lru_cache(maxsize=1)
 def _lark() -> Lark:
-    text = Path(__file__).with_name("expr_grammar.lark").read_text(encoding="utf-8")
-    return Lark(text, parser="lalr", lexer="contextual", propagate_positions=True,
-                maybe_placeholders=False)
+    return lalr_parser(Path(__file__).with_name("expr_grammar.lark"), propagate_positions=True,
+                       maybe_placeholders=False)
 
 
 def parse_expr(text: str) -> ast.Expr:

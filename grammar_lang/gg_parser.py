@@ -18,6 +18,7 @@ from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, Unex
 
 from . import gg_ast as A
 from .diagnostics import Span, UserError, did_you_mean, error
+from .lark_cache import lalr_parser
 from . import limits
 from .fileio import read_text
 from .source import ExampleSource
@@ -75,8 +76,8 @@ class _Lines:
 
 @lru_cache(maxsize=1)
 def _lark() -> Lark:
-    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
-                postlex=_Lines(), propagate_positions=True, maybe_placeholders=False)
+    return lalr_parser(GRAMMAR, {"postlex": _Lines()}, propagate_positions=True,
+                       maybe_placeholders=False)
 
 
 # ---- lark errors → diagnostics ------------------------------------------------------------------

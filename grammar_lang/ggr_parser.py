@@ -22,6 +22,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 from . import ggr_free, limits
 from .diagnostics import Diagnostic, Span, UserError
 from .fileio import read_text
+from .lark_cache import lalr_parser
 from .ggr_header import FORMAT_VERSION, HeaderReader
 from .ggr_reader import _Stop
 from .ggr_sides import SideReader, unicode
@@ -33,8 +34,7 @@ SYNTAX_HINT = "see docs/ggr-language.md for the syntax"
 
 @functools.lru_cache(maxsize=1)
 def _lark() -> Lark:
-    text = Path(__file__).with_name("ggr_grammar.lark").read_text(encoding="utf-8")
-    return Lark(text, parser="lalr", lexer="contextual", propagate_positions=False)
+    return lalr_parser(Path(__file__).with_name("ggr_grammar.lark"), propagate_positions=False)
 
 
 def load_ggr(path: str | Path) -> Grammar:
