@@ -115,3 +115,23 @@ def test_points_near_by_tag_is_the_untagged_answer_of_that_tag(pts, moves, remov
     for tag in range(3):
         assert sorted(g.points_near(x0, y0, x1, y1, False, tag)) == \
             [k for k in every if where[k] == tag]
+
+
+@settings(max_examples=200, deadline=None)
+@given(pts=st.lists(st.tuples(point, st.integers(0, 2)), max_size=40),
+       box=st.tuples(point, point), centre=point,
+       tags=st.sets(st.integers(0, 2), min_size=1), cell=st.sampled_from([0.5, 3.0]))
+def test_nearest_first_orders_points_near_by_distance_then_id(pts, box, centre, tags, cell):
+    """The lazy nearest-first walk gives the tagged points_near answer, sorted as the matcher
+    sorted it before: (squared distance from the centre, id). Shared coordinates make ties."""
+    g = Grid(cell, fine=0.5)
+    where = {}
+    for k, (p, tag) in enumerate(pts):
+        g.add_point(k, p, tag)
+        where[k] = p
+    (x0, y0), (x1, y1) = box
+    cx, cy = centre
+    near = [k for t in sorted(tags) for k in g.points_near(x0, y0, x1, y1, False, t)]
+    want = [k for _, k in sorted(((where[k][0] - cx) ** 2 + (where[k][1] - cy) ** 2, k)
+                                 for k in near)]
+    assert list(g.nearest_first(x0, y0, x1, y1, centre, tags)) == want

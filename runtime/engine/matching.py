@@ -97,8 +97,8 @@ def _comp_candidates(host: Host, pattern: Pattern, comp: Component, k: int,
     if near is None:
         return host.by_prim[prim]
     # Later components of a splice: only vertices near the part already matched, nearest
-    # first (the order is by distance and id, so the grid's order does not matter).
-    return _nearest_first(host, _near(host, near, prim), near)
+    # first, found lazily (the first candidates are usually the ones taken).
+    return _near(host, near, (prim,))
 
 
 class _Budget:
@@ -129,23 +129,24 @@ def _search(host: Host, pattern: Pattern, ci: int, vmap: dict, spo: bool,
     comp = pattern.components[ci]
     k = _anchor(host, pattern, comp)
     cands = _comp_candidates(host, pattern, comp, k, vmap if ci else None)
-    n = len(cands)
-    if n == 0:
-        return
     if ci:
         # Later parts of a splice: nearest first (as _comp_candidates gives them), since a
         # splice joins parts facing each other across one face, and the nearest candidates
         # are the likeliest to see the first part.
         order = cands
-    elif rng is None:
-        order = sorted(cands)
     else:
-        start = int(rng.integers(n))
-        if budget.probes is not None:
-            # A probe: random anchors only, so a failed try costs O(probes), not O(n).
-            order = (cands[int(j)] for j in rng.integers(n, size=min(n, budget.probes)))
+        n = len(cands)
+        if n == 0:
+            return
+        if rng is None:
+            order = sorted(cands)
         else:
-            order = (cands[(start + m) % n] for m in range(n))
+            start = int(rng.integers(n))
+            if budget.probes is not None:
+                # A probe: random anchors only, so a failed try costs O(probes), not O(n).
+                order = (cands[int(j)] for j in rng.integers(n, size=min(n, budget.probes)))
+            else:
+                order = (cands[(start + m) % n] for m in range(n))
     anchor = comp.vertices[k]
     for h in order:
         if ci and not budget.spend():
@@ -162,29 +163,24 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         return
     image = set(vmap.values())
     taken = {s for pair in wires for s in pair}
-    lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[wi]]
     placed = dict(vmap)
     placed.update({("w", k): s[0] for k, pair in enumerate(wires) for s in pair})
     if placed:
         # Beside parts already matched, look for the wire nearby only: the vertices the grid
-        # finds there, by primitive (not a scan of the primitive's whole index).
-        by_prim = {p: _near(host, placed, p) for p, _ in pattern.wire_slots[wi]}
-        lists = [(i, by_prim[p]) for p, i in pattern.wire_slots[wi]]
-    total = sum(len(lst) for _, lst in lists)
-    if total == 0:
-        return
-    if placed:
-        cx, cy = _centroid(host, placed)
-        pos = host.pos
-        flat = [(h, i) for _, h, i in sorted(
-            ((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h, i) for i, lst in lists
-            for h in lst)]
-    elif rng is not None:
-        # Every host edge of the label, from a random one on: walked in place, since listing
-        # them all would cost O(drawing) for a search that usually stops at the first.
-        flat = _rotated(lists, int(rng.integers(total)))
+        # finds there, nearest first (not a scan of the primitive's whole index).
+        flat = _near_slots(host, placed, pattern.wire_slots[wi])
     else:
-        flat = ((h, i) for i, lst in lists for h in lst)
+        lists = [(i, host.by_prim[p]) for p, i in pattern.wire_slots[wi]]
+        total = sum(len(lst) for _, lst in lists)
+        if total == 0:
+            return
+        if rng is not None:
+            # Every host edge of the label, from a random one on: walked in place, since
+            # listing them all would cost O(drawing) for a search that usually stops at the
+            # first.
+            flat = _rotated(lists, int(rng.integers(total)))
+        else:
+            flat = ((h, i) for i, lst in lists for h in lst)
     for h, i in flat:
         s1 = host.link[h][i]
         s0 = (h, i)
@@ -193,6 +189,17 @@ def _search_wires(host: Host, pattern: Pattern, wi: int, vmap: dict, wires: tupl
         if placed and not budget.spend():
             return
         yield from _search_wires(host, pattern, wi + 1, vmap, wires + ((s0, s1),), rng, budget)
+
+
+def _near_slots(host: Host, placed: dict, wire_slots) -> Iterator[tuple[int, int]]:
+    """The (vertex, slot) pairs of `wire_slots` ((primitive, slot) pairs) at the vertices near
+    `placed`, in order of distance, vertex and slot."""
+    slots: dict[int, list[int]] = {}
+    for p, i in sorted(wire_slots, key=lambda pi: pi[1]):
+        slots.setdefault(p, []).append(i)
+    for h in _near(host, placed, list(slots)):
+        for i in slots[host.prim[h]]:
+            yield h, i
 
 
 def _rotated(lists: list[tuple[int, list]], start: int) -> Iterator[tuple[int, int]]:
@@ -214,22 +221,15 @@ def _centroid(host: Host, placed: dict) -> tuple[float, float]:
     return cx, cy
 
 
-def _nearest_first(host: Host, cands: list[int], placed: dict) -> list[int]:
-    cx, cy = _centroid(host, placed)
-    pos = host.pos
-    # Decorated: the same (distance, id) order as a key function, without a call per vertex.
-    return [h for _, h in sorted([((pos[h][0] - cx) ** 2 + (pos[h][1] - cy) ** 2, h)
-                                  for h in cands])]
-
-
-def _near(host: Host, near: dict, prim: int) -> list[int]:
-    """The vertices of primitive `prim` within the splice radius of the box around the host
-    vertices `near` (the grid's cells: a superset), in no particular order."""
+def _near(host: Host, near: dict, prims) -> Iterator[int]:
+    """The vertices of the primitives `prims` in the grid's cells within the splice radius of
+    the box around the host vertices `near` (a superset of those within the radius), nearest
+    first: by distance from their centroid, then id (so the grid's order does not matter)."""
     xs = [host.pos[h][0] for h in near.values()]
     ys = [host.pos[h][1] for h in near.values()]
     r = SPLICE_RADIUS * host.t.unit
-    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, False,
-                                 prim)
+    return host.grid.nearest_first(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r,
+                                   _centroid(host, near), prims)
 
 
 def _match(pattern: Pattern, found) -> Match:

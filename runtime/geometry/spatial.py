@@ -16,10 +16,13 @@ they are for the queries whose answer is a superset that depends on them (candid
 from __future__ import annotations
 
 import bisect
+import heapq
 import math
-from typing import Hashable
+from operator import itemgetter
+from typing import Hashable, Iterator
 
 Point = tuple[float, float]
+_first = itemgetter(0)
 
 
 class Grid:
@@ -179,6 +182,39 @@ class Grid:
                     out.extend(s)
         return sorted(out) if ordered else out
 
+    def nearest_first(self, x0: float, y0: float, x1: float, y1: float, centre: Point,
+                      tags) -> Iterator[Hashable]:
+        """points_near's points of the given tags, in order of (squared distance from
+        `centre`, id), found lazily: a splice's search box holds about a hundred candidates
+        at 20,000 vertices and uses the first one or two, so cells are opened nearest first
+        and a point is given out once no unopened cell can hold a nearer one."""
+        cx, cy = centre
+        c, pts = self.cell, self._pts
+        maps = [m for m in (self._tag_cells.get(t) for t in tags) if m]
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
+        # A cell's least squared distance from the centre, less a margin for the rounding of
+        # floor(x / c) and of the distances: a lower bound for any point filed there.
+        eps = 1e-6 * c
+        gx = [_gap(i * c - cx, cx - (i + 1) * c, eps) ** 2 for i in range(i0, i1 + 1)]
+        gy = [_gap(j * c - cy, cy - (j + 1) * c, eps) ** 2 for j in range(j0, j1 + 1)]
+        cells = []                      # (bound, points) of the cells that hold any
+        for i, bx in enumerate(gx, i0):
+            for j, by in enumerate(gy, j0):
+                for m in maps:
+                    s = m.get((i, j))
+                    if s:
+                        cells.append((bx + by, s))
+        cells.sort(key=_first)
+        heap: list = []
+        for bound, s in cells:
+            while heap and heap[0][0] < bound:
+                yield heapq.heappop(heap)[1]
+            for h in s:
+                p = pts[h]
+                heapq.heappush(heap, ((p[0] - cx) ** 2 + (p[1] - cy) ** 2, h))
+        while heap:
+            yield heapq.heappop(heap)[1]
+
     def _reach(self, p: Point) -> list[tuple[int, int]]:
         """The fine cells within fine/2 of `p`, where it is filed."""
         f = self.fine
@@ -278,6 +314,12 @@ class Grid:
                 break
             col = nxt
         return None if best is None else (best[2], best[0])
+
+
+def _gap(below: float, above: float, eps: float) -> float:
+    """How far a coordinate lies outside a cell's range (`below`: the range's low end minus
+    it, `above`: it minus the high end), less `eps`; 0 inside."""
+    return max(below - eps, above - eps, 0.0)
 
 
 def seg_distance(a: Point, b: Point, c: Point, d: Point) -> float:
