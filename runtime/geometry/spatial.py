@@ -279,20 +279,20 @@ class Grid:
         if lo is None:
             return None
         best: tuple[float, float, Hashable] | None = None
-        seen: set = set()
+        cells, boxes = self._seg_cells, self.boxes
         col = col0
         # Every segment ends at points, so nothing lies left of the leftmost point column.
         while col >= lo:
             for row in rows:
-                cell = self._seg_cells.get((col, row))
+                cell = cells.get((col, row))
                 if not cell:
                     continue
+                # A segment met again in a later cell gives the same key and changes nothing,
+                # so none is remembered; most in a cell do not reach the ray's height, which
+                # their boxes tell first.
                 for sid in cell:
-                    if sid in seen or sid in skip:
-                        continue
-                    seen.add(sid)
-                    (ax, ay), (bx, by) = self._segs[sid]
-                    if (ay > top) == (by > top):
+                    lx, ly, hx, hy, (ax, ay), (bx, by) = boxes[sid]
+                    if ly > top or hy <= top or sid in skip:     # both ends on one side
                         continue
                     if ay > by:
                         ax, ay, bx, by = bx, by, ax, ay
