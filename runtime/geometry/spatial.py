@@ -1,7 +1,10 @@
 """A uniform grid over segments and points, so geometric tests look at neighbours only.
 
-Cells are squares of side `cell`. A segment is filed in every cell its bounding box touches,
-which is a handful for edges of about the unit length the grid is sized for. Queries return ids
+Cells are squares of side `cell`. A segment is filed in every cell of side `seg` (the host's:
+half a cell) its bounding box touches, which is a handful for edges of about the unit length
+the grid is sized for. The segment queries (the crossing tests' candidates, the face test's
+ray) have exact answers, so their cells may be any size: the host's drawings densify as they
+grow, and smaller cells hold fewer segments that a test reads and discards. Queries return ids
 sorted, so nothing depends on insertion or hash order.
 
 Points are also filed in much finer cells (side `fine`, a couple of clearances): the test for a
@@ -26,11 +29,12 @@ _first = itemgetter(0)
 
 
 class Grid:
-    def __init__(self, cell: float, fine: float | None = None):
-        if not cell > 0 or (fine is not None and not fine > 0):
+    def __init__(self, cell: float, fine: float | None = None, seg: float | None = None):
+        if not cell > 0 or any(x is not None and not x > 0 for x in (fine, seg)):
             raise ValueError("grid cell size must be positive")
         self.cell = float(cell)
         self.fine = float(fine or cell)
+        self.seg = float(seg or cell)
         self._fine_cells: dict[tuple[int, int], list] = {}
         self._seg_cells: dict[tuple[int, int], set] = {}
         # Per row of cells, the sorted columns whose cell holds a segment: a ray cast to the
@@ -54,14 +58,17 @@ class Grid:
     def key(self, p: Point) -> tuple[int, int]:
         return (math.floor(p[0] / self.cell), math.floor(p[1] / self.cell))
 
-    def span(self, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int, int, int]:
-        """The columns i0..i1 and rows j0..j1 of the cells a box touches."""
-        c = self.cell
+    def span(self, x0: float, y0: float, x1: float, y1: float,
+             c: float | None = None) -> tuple[int, int, int, int]:
+        """The columns i0..i1 and rows j0..j1 of the cells (of side `c`, the point cells'
+        unless given) a box touches."""
+        c = c or self.cell
         return (math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c),
                 math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c))
 
-    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> list[tuple[int, int]]:
-        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
+    def box_cells(self, x0: float, y0: float, x1: float, y1: float,
+                  c: float | None = None) -> list[tuple[int, int]]:
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1, c)
         if i0 == i1 and j0 == j1:        # the usual case for a point or a short edge
             return [(i0, j0)]
         return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
@@ -73,7 +80,7 @@ class Grid:
         ly, hy = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
         self.boxes[sid] = (lx, ly, hx, hy, a, b)
         cells = self._seg_cells
-        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
             cell = cells.get(k)
             if cell is None:
                 cell = cells[k] = set()
@@ -83,7 +90,7 @@ class Grid:
     def remove_segment(self, sid: Hashable) -> None:
         a, b = self._segs.pop(sid)
         del self.boxes[sid]
-        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
             cell = self._seg_cells[k]
             cell.discard(sid)
             if not cell:
@@ -111,7 +118,7 @@ class Grid:
         """Ids of segments filed in any cell the box touches (a superset of those meeting it).
         The set may be the grid's own: read it, do not change it."""
         out: set = set()
-        cells, c = self._seg_cells, self.cell
+        cells, c = self._seg_cells, self.seg
         i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
         j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
         if i0 == i1 and j0 == j1:           # the usual case: one cell, no copy needed
@@ -255,10 +262,6 @@ class Grid:
                          (max(self._cols) + 1) * c, (max(self._rows) + 1) * c)
         return self._box
 
-    def min_column(self) -> int | None:
-        b = self.bounds()
-        return None if b is None else round(b[0] / self.cell)
-
     def ray_left(self, p: Point, skip=(), tol: float = 0.0) -> tuple[Hashable, float] | None:
         """The first segment hit by the ray from `p` towards -x, at height p.y + 0⁺.
 
@@ -271,13 +274,14 @@ class Grid:
         be just above p.y. Returns (id, x of the hit).
         """
         px, py = p
-        c = self.cell
+        c = self.seg
         col0 = math.floor(px / c)
         top = py + tol
         rows = sorted({math.floor((py - tol) / c), math.floor(top / c)})
-        lo = self.min_column()
-        if lo is None:
+        b = self.bounds()
+        if b is None:
             return None
+        lo = math.floor(b[0] / c)
         best: tuple[float, float, Hashable] | None = None
         cells, boxes = self._seg_cells, self.boxes
         col = col0
