@@ -34,8 +34,8 @@ def ray_reference(segs: dict, p, skip=(), tol=0.0):
     return None if best is None else (best[2], best[0])
 
 
-def build(cell, pieces, removed):
-    g, segs = Grid(cell, fine=0.5), {}
+def build(cell, pieces, removed, seg=None):
+    g, segs = Grid(cell, fine=0.5, seg=seg), {}
     for k, (a, b) in enumerate(pieces):
         g.add_segment(k, a, b)
         g.add_point(("a", k), a)
@@ -49,12 +49,13 @@ def build(cell, pieces, removed):
 
 
 @settings(max_examples=300, deadline=None)
-@given(cell=st.sampled_from([0.5, 1.0, 3.0]),
+@given(cell=st.sampled_from([0.5, 1.0, 3.0]), seg=st.sampled_from([None, 0.4, 1.5]),
        pieces=st.lists(st.tuples(point, point).filter(lambda s: s[0] != s[1]), max_size=25),
        removed=st.sets(st.integers(0, 24)), rays=st.lists(point, min_size=1, max_size=6),
        tol=st.sampled_from([0.0, 1e-7]))
-def test_ray_left_finds_what_brute_force_finds(cell, pieces, removed, rays, tol):
-    g, segs = build(cell, pieces, removed)
+def test_ray_left_finds_what_brute_force_finds(cell, seg, pieces, removed, rays, tol):
+    """Segment cells of their own size (smaller or larger than the point cells) too."""
+    g, segs = build(cell, pieces, removed, seg)
     skip = {k for k in segs if k % 7 == 3}
     for p in rays:
         assert g.ray_left(p, skip, tol) == ray_reference(segs, p, skip, tol)
@@ -115,3 +116,23 @@ def test_points_near_by_tag_is_the_untagged_answer_of_that_tag(pts, moves, remov
     for tag in range(3):
         assert sorted(g.points_near(x0, y0, x1, y1, False, tag)) == \
             [k for k in every if where[k] == tag]
+
+
+@settings(max_examples=200, deadline=None)
+@given(pts=st.lists(st.tuples(point, st.integers(0, 2)), max_size=40),
+       box=st.tuples(point, point), centre=point,
+       tags=st.sets(st.integers(0, 2), min_size=1), cell=st.sampled_from([0.5, 3.0]))
+def test_nearest_first_orders_points_near_by_distance_then_id(pts, box, centre, tags, cell):
+    """The lazy nearest-first walk gives the tagged points_near answer, sorted as the matcher
+    sorted it before: (squared distance from the centre, id). Shared coordinates make ties."""
+    g = Grid(cell, fine=0.5)
+    where = {}
+    for k, (p, tag) in enumerate(pts):
+        g.add_point(k, p, tag)
+        where[k] = p
+    (x0, y0), (x1, y1) = box
+    cx, cy = centre
+    near = [k for t in sorted(tags) for k in g.points_near(x0, y0, x1, y1, False, t)]
+    want = [k for _, k in sorted(((where[k][0] - cx) ** 2 + (where[k][1] - cy) ** 2, k)
+                                 for k in near)]
+    assert list(g.nearest_first(x0, y0, x1, y1, centre, tags)) == want

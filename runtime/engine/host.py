@@ -27,6 +27,12 @@ from ..geometry.tables import Tables, grid_cell
 # least squares, so vertices joined by a horizontal edge can differ by rounding noise (~1e-15).
 LEVEL_TOL = 1e-7
 
+# Segments are filed in cells this many times finer than the unit cells of points: drawings
+# densify as they grow (curl's median edge falls from 0.36 to 0.19 units between 1,000 and
+# 20,000 vertices), and the crossing tests and the face test's ray read whole cells. At 20,000
+# vertices half-unit cells save 1–3 % of a step; at 1,000 they cost as much as they save.
+SEGMENT_CELLS = 2
+
 # Each journaled operation, as (method, indexes of its record's fields) to do it again or to
 # undo it: `add v prim p` is undone by `remove v`, `glue a b` by `unglue a`, `move v old new`
 # by `move v old`.
@@ -47,7 +53,8 @@ class Host:
         self.prim_count = np.zeros(len(self.t.rings), dtype=np.int64)   # len(by_prim[p])
         self._where: dict[int, int] = {}
         self.next_id = 0
-        self.grid = Grid(grid_cell(self.t), fine=2 * self.t.clearance)
+        cell = grid_cell(self.t)
+        self.grid = Grid(cell, fine=2 * self.t.clearance, seg=cell / SEGMENT_CELLS)
         self.label_count = [0] * len(self.t.label_names)
         self.n_edges = 0
         self.n_open = 0

@@ -258,19 +258,17 @@ def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
             out.append((v, u))
     placed = {**vmap, **{("w", e, j): s[0] for e, pair in wmap.items()
                          for j, s in enumerate(pair)}}
-    near = []
-    if wire:
-        for p, j in pattern.wire_slots[-1 - v]:
-            for h in _near(host, placed, p):
-                s1 = link[h][j]
-                if s1 is not None and h not in entry.vertices and s1[0] not in entry.vertices:
-                    near.append(((h, j), s1))
-    else:
-        near = [(v, h) for h in _near(host, placed, want) if h not in entry.vertices]
     yield from _nearest_first(host, out, placed, wire)
-    item = pattern.entries[k][1]
-    for cand in _nearest_first(host, near, placed, wire):
-        at = _corner(host, item, {v: cand[1]} if not wire else {},
+    if wire:
+        slots = _near_slots(host, placed, pattern.wire_slots[-1 - v])
+        near = (((h, j), link[h][j]) for h, j in slots if link[h][j] is not None)
+    else:
+        near = ((v, h) for h in _near(host, placed, (want,)))
+    for cand in near:
+        ends = (cand[0][0], cand[1][0]) if wire else (cand[1],)
+        if not entry.vertices.isdisjoint(ends):
+            continue                    # on the walk, but not where the item goes
+        at = _corner(host, (v, i), {v: cand[1]} if not wire else {},
                      {-1 - v: cand} if wire else {}, False)
         if entry.shares_face(FaceWalk(link, host.pos, at, limit)) is not False:
             yield cand
@@ -295,14 +293,28 @@ def _nearest_first(host: Host, cands: list, placed: dict, wire: bool) -> list:
     return [c for _, _, c in keyed]
 
 
-def _near(host: Host, near: dict, prim: int) -> list[int]:
-    """The vertices of primitive `prim` within the splice radius of the box around the host
-    vertices `near` (the grid's cells: a superset), in no particular order."""
+def _near(host: Host, near: dict, prims) -> Iterator[int]:
+    """The vertices of the primitives `prims` in the grid's cells within the splice radius of
+    the box around the host vertices `near` (a superset of those within the radius), nearest
+    first: by distance from their centroid, then id (so the grid's order does not matter),
+    found lazily (the first few are usually all a search takes)."""
     xs = [host.pos[h][0] for h in near.values()]
     ys = [host.pos[h][1] for h in near.values()]
     r = SPLICE_RADIUS * host.t.unit
-    return host.grid.points_near(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r, False,
-                                 prim)
+    centre = (sum(xs) / len(xs), sum(ys) / len(ys))
+    return host.grid.nearest_first(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r,
+                                   centre, prims)
+
+
+def _near_slots(host: Host, placed: dict, wire_slots) -> Iterator[tuple[int, int]]:
+    """The (vertex, slot) pairs of `wire_slots` ((primitive, slot) pairs) at the vertices near
+    `placed`, in order of distance, vertex and slot."""
+    slots: dict[int, list[int]] = {}
+    for p, i in sorted(wire_slots, key=lambda pi: pi[1]):
+        slots.setdefault(p, []).append(i)
+    for h in _near(host, placed, list(slots)):
+        for i in slots[host.prim[h]]:
+            yield h, i
 
 
 def _corner(host: Host, item: Slot, vmap: dict, wmap: dict, after: bool) -> Slot:

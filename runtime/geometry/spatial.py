@@ -1,7 +1,10 @@
 """A uniform grid over segments and points, so geometric tests look at neighbours only.
 
-Cells are squares of side `cell`. A segment is filed in every cell its bounding box touches,
-which is a handful for edges of about the unit length the grid is sized for. Queries return ids
+Cells are squares of side `cell`. A segment is filed in every cell of side `seg` (the host's:
+half a cell) its bounding box touches, which is a handful for edges of about the unit length
+the grid is sized for. The segment queries (the crossing tests' candidates, the face test's
+ray) have exact answers, so their cells may be any size: the host's drawings densify as they
+grow, and smaller cells hold fewer segments that a test reads and discards. Queries return ids
 sorted, so nothing depends on insertion or hash order.
 
 Points are also filed in much finer cells (side `fine`, a couple of clearances): the test for a
@@ -16,18 +19,22 @@ they are for the queries whose answer is a superset that depends on them (candid
 from __future__ import annotations
 
 import bisect
+import heapq
 import math
-from typing import Hashable
+from operator import itemgetter
+from typing import Hashable, Iterator
 
 Point = tuple[float, float]
+_first = itemgetter(0)
 
 
 class Grid:
-    def __init__(self, cell: float, fine: float | None = None):
-        if not cell > 0 or (fine is not None and not fine > 0):
+    def __init__(self, cell: float, fine: float | None = None, seg: float | None = None):
+        if not cell > 0 or any(x is not None and not x > 0 for x in (fine, seg)):
             raise ValueError("grid cell size must be positive")
         self.cell = float(cell)
         self.fine = float(fine or cell)
+        self.seg = float(seg or cell)
         self._fine_cells: dict[tuple[int, int], list] = {}
         self._seg_cells: dict[tuple[int, int], set] = {}
         # Per row of cells, the sorted columns whose cell holds a segment: a ray cast to the
@@ -51,14 +58,17 @@ class Grid:
     def key(self, p: Point) -> tuple[int, int]:
         return (math.floor(p[0] / self.cell), math.floor(p[1] / self.cell))
 
-    def span(self, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int, int, int]:
-        """The columns i0..i1 and rows j0..j1 of the cells a box touches."""
-        c = self.cell
+    def span(self, x0: float, y0: float, x1: float, y1: float,
+             c: float | None = None) -> tuple[int, int, int, int]:
+        """The columns i0..i1 and rows j0..j1 of the cells (of side `c`, the point cells'
+        unless given) a box touches."""
+        c = c or self.cell
         return (math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c),
                 math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c))
 
-    def box_cells(self, x0: float, y0: float, x1: float, y1: float) -> list[tuple[int, int]]:
-        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
+    def box_cells(self, x0: float, y0: float, x1: float, y1: float,
+                  c: float | None = None) -> list[tuple[int, int]]:
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1, c)
         if i0 == i1 and j0 == j1:        # the usual case for a point or a short edge
             return [(i0, j0)]
         return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
@@ -70,7 +80,7 @@ class Grid:
         ly, hy = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
         self.boxes[sid] = (lx, ly, hx, hy, a, b)
         cells = self._seg_cells
-        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
             cell = cells.get(k)
             if cell is None:
                 cell = cells[k] = set()
@@ -80,7 +90,7 @@ class Grid:
     def remove_segment(self, sid: Hashable) -> None:
         a, b = self._segs.pop(sid)
         del self.boxes[sid]
-        for k in self.box_cells(a[0], a[1], b[0], b[1]):
+        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
             cell = self._seg_cells[k]
             cell.discard(sid)
             if not cell:
@@ -108,7 +118,7 @@ class Grid:
         """Ids of segments filed in any cell the box touches (a superset of those meeting it).
         The set may be the grid's own: read it, do not change it."""
         out: set = set()
-        cells, c = self._seg_cells, self.cell
+        cells, c = self._seg_cells, self.seg
         i0, i1 = math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c)
         j0, j1 = math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c)
         if i0 == i1 and j0 == j1:           # the usual case: one cell, no copy needed
@@ -179,6 +189,39 @@ class Grid:
                     out.extend(s)
         return sorted(out) if ordered else out
 
+    def nearest_first(self, x0: float, y0: float, x1: float, y1: float, centre: Point,
+                      tags) -> Iterator[Hashable]:
+        """points_near's points of the given tags, in order of (squared distance from
+        `centre`, id), found lazily: a splice's search box holds about a hundred candidates
+        at 20,000 vertices and uses the first one or two, so cells are opened nearest first
+        and a point is given out once no unopened cell can hold a nearer one."""
+        cx, cy = centre
+        c, pts = self.cell, self._pts
+        maps = [m for m in (self._tag_cells.get(t) for t in tags) if m]
+        i0, i1, j0, j1 = self.span(x0, y0, x1, y1)
+        # A cell's least squared distance from the centre, less a margin for the rounding of
+        # floor(x / c) and of the distances: a lower bound for any point filed there.
+        eps = 1e-6 * c
+        gx = [_gap(i * c - cx, cx - (i + 1) * c, eps) ** 2 for i in range(i0, i1 + 1)]
+        gy = [_gap(j * c - cy, cy - (j + 1) * c, eps) ** 2 for j in range(j0, j1 + 1)]
+        cells = []                      # (bound, points) of the cells that hold any
+        for i, bx in enumerate(gx, i0):
+            for j, by in enumerate(gy, j0):
+                for m in maps:
+                    s = m.get((i, j))
+                    if s:
+                        cells.append((bx + by, s))
+        cells.sort(key=_first)
+        heap: list = []
+        for bound, s in cells:
+            while heap and heap[0][0] < bound:
+                yield heapq.heappop(heap)[1]
+            for h in s:
+                p = pts[h]
+                heapq.heappush(heap, ((p[0] - cx) ** 2 + (p[1] - cy) ** 2, h))
+        while heap:
+            yield heapq.heappop(heap)[1]
+
     def _reach(self, p: Point) -> list[tuple[int, int]]:
         """The fine cells within fine/2 of `p`, where it is filed."""
         f = self.fine
@@ -219,10 +262,6 @@ class Grid:
                          (max(self._cols) + 1) * c, (max(self._rows) + 1) * c)
         return self._box
 
-    def min_column(self) -> int | None:
-        b = self.bounds()
-        return None if b is None else round(b[0] / self.cell)
-
     def ray_left(self, p: Point, skip=(), tol: float = 0.0) -> tuple[Hashable, float] | None:
         """The first segment hit by the ray from `p` towards -x, at height p.y + 0⁺.
 
@@ -235,28 +274,29 @@ class Grid:
         be just above p.y. Returns (id, x of the hit).
         """
         px, py = p
-        c = self.cell
+        c = self.seg
         col0 = math.floor(px / c)
         top = py + tol
         rows = sorted({math.floor((py - tol) / c), math.floor(top / c)})
-        lo = self.min_column()
-        if lo is None:
+        b = self.bounds()
+        if b is None:
             return None
+        lo = math.floor(b[0] / c)
         best: tuple[float, float, Hashable] | None = None
-        seen: set = set()
+        cells, boxes = self._seg_cells, self.boxes
         col = col0
         # Every segment ends at points, so nothing lies left of the leftmost point column.
         while col >= lo:
             for row in rows:
-                cell = self._seg_cells.get((col, row))
+                cell = cells.get((col, row))
                 if not cell:
                     continue
+                # A segment met again in a later cell gives the same key and changes nothing,
+                # so none is remembered; most in a cell do not reach the ray's height, which
+                # their boxes tell first.
                 for sid in cell:
-                    if sid in seen or sid in skip:
-                        continue
-                    seen.add(sid)
-                    (ax, ay), (bx, by) = self._segs[sid]
-                    if (ay > top) == (by > top):
+                    lx, ly, hx, hy, (ax, ay), (bx, by) = boxes[sid]
+                    if ly > top or hy <= top or sid in skip:     # both ends on one side
                         continue
                     if ay > by:
                         ax, ay, bx, by = bx, by, ax, ay
@@ -278,6 +318,12 @@ class Grid:
                 break
             col = nxt
         return None if best is None else (best[2], best[0])
+
+
+def _gap(below: float, above: float, eps: float) -> float:
+    """How far a coordinate lies outside a cell's range (`below`: the range's low end minus
+    it, `above`: it minus the high end), less `eps`; 0 inside."""
+    return max(below - eps, above - eps, 0.0)
 
 
 def seg_distance(a: Point, b: Point, c: Point, d: Point) -> float:
