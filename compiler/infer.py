@@ -124,8 +124,7 @@ class Inference:
         self.structural: list[Rule] = []     # §5.4 rules that restructured the blocks
         self.pending: tuple[list[Graph], set[int], Rule] | None = None
         self.limits_hit: set[str] = set()
-        rigid = {k for k, lab in enumerate(example.labels) if example.cls(lab.cls).rigid}
-        self._start(grouping.blocks(self.rings, enabled=group, rigid=rigid), original=None)
+        self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None) -> None:
         """A fresh hierarchy glued from `blocks`; `original` are those that group primitives
