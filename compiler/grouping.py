@@ -54,20 +54,22 @@ def blocks(rings: Sequence[Sequence[int]], enabled: bool = True,
     if not enabled:
         return prims
     pairs = [(p, (0, i), q, (0, j)) for p, i, q, j in forced_pairs(rings)]
-    return merge(prims, pairs, rings, loops)
+    return merge(prims, pairs, rings, loops)[0]
 
 
 def merge(parts: Sequence[Graph], pairs: Sequence[tuple[int, Slot, int, Slot]],
-          rings, loops: bool = True) -> list[Graph]:
+          rings, loops: bool = True) -> tuple[list[Graph], list[tuple[int, int]]]:
     """`parts` glued along forced `pairs` (part, open slot, part, open slot): each component
     once, along a spanning tree, with its forced cycles then closed if `loops`; in order of
-    each component's first part."""
+    each component's first part. Also where each part went: (merged graph, its first vertex
+    there)."""
     adj: dict[int, list[tuple[Slot, int, Slot]]] = {p: [] for p in range(len(parts))}
     for p, s, q, t in pairs:
         adj[p].append((s, q, t))
         adj[q].append((t, p, s))
     done: set[int] = set()
     out = []
+    place = [(0, 0)] * len(parts)
     for root in range(len(parts)):
         if root in done:
             continue
@@ -83,30 +85,12 @@ def merge(parts: Sequence[Graph], pairs: Sequence[tuple[int, Slot, int, Slot]],
                 g = branch_glue(g, (where[p] + s[0], s[1]), parts[q], t, rings)
                 queue.append(q)
         done.update(where)
+        for p, first in where.items():
+            place[p] = (len(out), first)
         cycles = [((where[p] + s[0], s[1]), (where[q] + t[0], t[1]))
                   for p, s, q, t in pairs if p in where and q in where]
         out.append(_close(g, cycles, rings) if loops else g)
-    return out
-
-
-def components(n: int, edges: Sequence[tuple[int, int]]) -> list[list[int]]:
-    """The parts 0..n-1 joined by `edges`, each component's parts in order, in the order of
-    each component's first part (the order `merge` makes its blocks in)."""
-    root = list(range(n))
-
-    def find(a: int) -> int:
-        while root[a] != a:
-            root[a] = root[root[a]]
-            a = root[a]
-        return a
-
-    for a, b in edges:
-        ra, rb = find(a), find(b)
-        root[max(ra, rb)] = min(ra, rb)
-    out: dict[int, list[int]] = {}
-    for a in range(n):
-        out.setdefault(find(a), []).append(a)
-    return [out[r] for r in sorted(out)]
+    return out, place
 
 
 def _close(g: Graph, pairs: list[tuple[Slot, Slot]], rings) -> Graph:
