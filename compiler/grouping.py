@@ -4,21 +4,27 @@ When a token `t` is carried by exactly one slot (A, i) of all primitives and its
 exactly one slot (B, j) of another primitive, every A has a B glued at slot i and every B an A at
 slot j: the two are one unit. Following such forced pairs between distinct primitives gives
 components; a spanning tree of each is glued once into a block, and the hierarchy is built from
-blocks instead of primitives. Forced pairs outside the tree (a component with a cycle) are left
-to the hierarchy: the same A may meet a different B instance there, so they are not forced to
-close on the block itself.
+blocks instead of primitives.
 
-Rigid parts are the exception (the paper merges them into single units before building its
-hierarchy). A rigid edge is a label of its own, so its two ends are primitives with one instance
-each, and a cycle of rigid edges has fixed vectors that sum to zero only once around: the copy of
-A that B meets is the same A, and the block closes its rigid cycles by loop gluing. Left open,
-each such slot would be glued to another copy of the block by the hierarchy, which grows
-thousands of spirals of blossoms that no complete graph holds.
+Forced pairs outside the tree (a component with a cycle) close on the block itself. Following
+forced pairs from one instance of A visits instances of B, C, ... and comes back to an instance
+of A, as each forced pair is one-to-one; after k rounds it closes. The walk visits distinct
+vertices, so it is a simple cycle, and a simple cycle of a complete graph turns exactly once
+(each face turns once and the angles round each vertex sum to 360°). The turns round the cycle
+are fixed by the labels, the same in every round, so k rounds turn k times as much: k = 1, the
+copy of A that the cycle comes back to is the same A. The block closes those cycles by loop
+gluing, innermost first; a cycle that still has other open slots inside it is left to the
+hierarchy, which must fill its inside before closing it (companion §3.1). Left open, each such
+slot would be glued to another copy of the block by the hierarchy, which then grows spirals of
+blocks (thousands, for the space station's connector) that no complete graph holds.
+
+(Rigid parts are the case the paper names: it merges them into single units before building
+its hierarchy, Table 1. A rigid edge is a label of its own, so its two ends are forced.)
 """
 
 from __future__ import annotations
 
-from typing import Collection, Sequence
+from typing import Sequence
 
 from grammar_lang import boundary as bd
 
@@ -41,44 +47,57 @@ def forced_pairs(rings: Sequence[Sequence[int]]) -> list[tuple[int, int, int, in
 
 
 def blocks(rings: Sequence[Sequence[int]], enabled: bool = True,
-           rigid: Collection[int] = ()) -> list[Graph]:
-    """The blocks the hierarchy is built from; `rigid` are the labels of rigid edges, whose
-    cycles each block closes."""
-    n = len(rings)
+           loops: bool = True) -> list[Graph]:
+    """The blocks the hierarchy is built from, each with its forced cycles closed (unless
+    `loops` is off: then no gluing may close a loop)."""
+    prims = [primitive_graph(p, len(rings[p])) for p in range(len(rings))]
     if not enabled:
-        return [primitive_graph(p, len(rings[p])) for p in range(n)]
-    pairs = forced_pairs(rings)
-    adj: dict[int, list[tuple[int, int, int, int]]] = {p: [] for p in range(n)}
-    for p, i, q, j in pairs:
-        adj[p].append((p, i, q, j))
-        adj[q].append((q, j, p, i))
-    closing = [pr for pr in pairs if bd.label_of(rings[pr[0]][pr[1]]) in rigid]
+        return prims
+    pairs = [(p, (0, i), q, (0, j)) for p, i, q, j in forced_pairs(rings)]
+    return merge(prims, pairs, rings, loops)[0]
+
+
+def merge(parts: Sequence[Graph], pairs: Sequence[tuple[int, Slot, int, Slot]],
+          rings, loops: bool = True) -> tuple[list[Graph], list[tuple[int, int]]]:
+    """`parts` glued along forced `pairs` (part, open slot, part, open slot): each component
+    once, along a spanning tree, with its forced cycles then closed if `loops`; in order of
+    each component's first part. Also where each part went: (merged graph, its first vertex
+    there)."""
+    adj: dict[int, list[tuple[Slot, int, Slot]]] = {p: [] for p in range(len(parts))}
+    for p, s, q, t in pairs:
+        adj[p].append((s, q, t))
+        adj[q].append((t, p, s))
     done: set[int] = set()
     out = []
-    for root in range(n):
+    place = [(0, 0)] * len(parts)
+    for root in range(len(parts)):
         if root in done:
             continue
-        g = primitive_graph(root, len(rings[root]))
-        where = {root: 0}
+        g = parts[root]
+        where = {root: 0}      # part → the vertex its own vertex 0 became
         queue = [root]
         while queue:
             p = queue.pop(0)
-            for _, i, q, j in sorted(adj[p]):
+            for s, q, t in sorted(adj[p]):
                 if q in where:
                     continue
                 where[q] = len(g.verts)
-                g = branch_glue(g, (where[p], i), primitive_graph(q, len(rings[q])), (0, j), rings)
+                g = branch_glue(g, (where[p] + s[0], s[1]), parts[q], t, rings)
                 queue.append(q)
         done.update(where)
-        out.append(_close(g, [((where[p], i), (where[q], j)) for p, i, q, j in closing
-                              if p in where and q in where], rings))
-    return out
+        for p, first in where.items():
+            place[p] = (len(out), first)
+        cycles = [((where[p] + s[0], s[1]), (where[q] + t[0], t[1]))
+                  for p, s, q, t in pairs if p in where and q in where]
+        out.append(_close(g, cycles, rings) if loops else g)
+    return out, place
 
 
 def _close(g: Graph, pairs: list[tuple[Slot, Slot]], rings) -> Graph:
     """`g` with each pair of its open slots loop glued, innermost cycle first (a pair whose
-    slots are next to each other on the boundary); the tree's own edges are not in `pairs`."""
-    todo = {frozenset(pr) for pr in pairs}
+    slots are next to each other on the boundary); pairs the tree glued already are skipped."""
+    open_slots = {s for s, _ in g.gaps}
+    todo = {frozenset(pr) for pr in pairs if open_slots.issuperset(pr)}
     progress = True
     while todo and progress:
         progress = False

@@ -32,6 +32,7 @@ from grammar_lang.graph import EMPTY, Side
 from grammar_lang.rules import Grammar, Header, Rule
 
 from . import grouping
+from .regroup import regroup
 from .canon import canonical_key, split
 from .framing import frame_rules, frame_starters, frame_with_start
 from .gluing import Graph, block_slots, children, unit_places
@@ -122,14 +123,20 @@ class Inference:
         self.frame = find_frame(example)      # a border that is not one loop is reported here
         self.t0 = time.perf_counter()
         self.structural: list[Rule] = []     # §5.4 rules that restructured the blocks
-        self.pending: tuple[list[Graph], set[int], Rule] | None = None
+        # The next blocks to start from: with the §5.4 rule that restructured them, or with
+        # None when the rules found so far regrouped them (and are kept).
+        self.pending: tuple[list[Graph], set[int], Rule | None] | None = None
         self.limits_hit: set[str] = set()
-        rigid = {k for k, lab in enumerate(example.labels) if example.cls(lab.cls).rigid}
-        self._start(grouping.blocks(self.rings, enabled=group, rigid=rigid), original=None)
+        self.spent = 0        # graphs of the hierarchies started again from other blocks
+        self.group = group
+        self.carry = None     # what a regrouping passes on to the next turning analysis
+        self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
-    def _start(self, blocks: list[Graph], original: set[int] | None) -> None:
+    def _start(self, blocks: list[Graph], original: set[int] | None,
+               kept: list[_Rule] = ()) -> None:
         """A fresh hierarchy glued from `blocks`; `original` are those that group primitives
-        (companion §3.3) rather than stand for a §5.4 rule's right side."""
+        (companion §3.3) rather than stand for a §5.4 rule's right side; `kept` are rules found
+        before, which still reduce the graphs holding their left sides."""
         self.blocks = [replace(b, units=(k,)) for k, b in enumerate(blocks)]
         self.original = set(range(len(blocks))) if original is None else original
         self.slots = block_slots(self.blocks, self.rings)
@@ -137,6 +144,8 @@ class Inference:
         self.matcher = Matcher(splice=self.splice)
         self.turns = TurnAnalysis(self.rings, self.blocks)
         self.state = _State(limits_hit=self.limits_hit)
+        for r in kept:
+            self._index_rule(r)
         self.frontier: list[int] = []
         self.generation = 0
         for lab in range(len(self.ex.labels)):
@@ -150,8 +159,16 @@ class Inference:
         while self.pending is not None:
             blocks, original, rule = self.pending
             self.pending = None
-            self.structural.append(replace(rule, name=f"r{len(self.structural)}"))
-            self._start(blocks, original)
+            self.spent += len(self.hier.nodes)
+            kept: list[_Rule] = []
+            if rule is None:
+                kept = self.state.rules
+            else:
+                self.carry = None
+                self.structural.append(replace(rule, name=f"r{len(self.structural)}"))
+            self._start(blocks, original, kept)
+            if self.carry is not None:
+                self._carry_turns()
             self._grow()
         return self._result()
 
@@ -165,6 +182,7 @@ class Inference:
             if self.pending is not None:
                 return
         self._recheck()
+        self._regroup()
         self._tick()
         while self.frontier and self.pending is None and not self._out_of_time():
             if self.generation >= self.limits.generations:
@@ -186,13 +204,16 @@ class Inference:
             if self.pending is not None:
                 return
             self._recheck()
+            self._regroup()
+            if self.pending is not None:
+                return
             self._tick()
             if self._too_many():
                 break
 
     def _tick(self) -> None:
         if self.progress:
-            self.progress(self.generation, len(self.hier.nodes),
+            self.progress(self.generation, self.spent + len(self.hier.nodes),
                           len(self.structural) + len(self.state.rules))
 
     def _out_of_time(self) -> bool:
@@ -204,7 +225,7 @@ class Inference:
         return False
 
     def _too_many(self) -> bool:
-        if len(self.hier.nodes) >= self.limits.graphs:
+        if self.spent + len(self.hier.nodes) >= self.limits.graphs:
             self.state.limits_hit.add("graphs")
             return True
         return False
@@ -303,14 +324,76 @@ class Inference:
                 node.status = RULE
                 self.pending = (*plan, rule)
                 return
-        idx = len(self.state.rules)
-        self.state.rules.append(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
-        for p in sorted(set(g.verts)):
-            self.state.by_prim.setdefault(p, []).append(idx)
+        idx = self._index_rule(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         node.status = RULE
         if not exceptions and not starter:
             self._forbid(g)
         self._drop_holders(idx, node.id)
+
+    def _index_rule(self, r: _Rule) -> int:
+        idx = len(self.state.rules)
+        self.state.rules.append(r)
+        for p in sorted(set(r.lhs.verts)):
+            self.state.by_prim.setdefault(p, []).append(idx)
+        return idx
+
+    def _regroup(self) -> None:
+        """Start again from the live blocks, forced pairs glued (regroup.py), when the rules
+        found so far pair slots off."""
+        if self.pending is not None or not self.group:
+            return
+        found = regroup(self.turns, self.blocks)
+        if found is None:
+            return
+        live, pairs = found
+        at = {u: n for n, u in enumerate(live)}
+        merged, place = grouping.merge([self.blocks[u] for u in live],
+                                       [(at[p], s, at[q], t) for p, s, q, t in pairs],
+                                       self.rings, self.loops)
+        size = [0] * len(merged)
+        for b, _ in place:
+            size[b] += 1
+        # Blocks left alone keep their order and merged ones follow, smaller first: of two
+        # with equal boundaries the earlier is the simpler, and a merged block is what the
+        # old hierarchy would have met later, as a glued graph.
+        order = sorted(range(len(merged)),
+                       key=lambda b: (size[b] > 1, len(merged[b].verts) * (size[b] > 1), b))
+        new_id = {b: n for n, b in enumerate(order)}
+        where = {u: (new_id[place[n][0]], place[n][1]) for n, u in enumerate(live)}
+        original = {new_id[b] for b in range(len(merged))
+                    if all(u in self.original for n, u in enumerate(live) if place[n][0] == b)}
+        self.carry = (self.turns, self.blocks, where)
+        self.pending = ([merged[b] for b in order], original, None)
+
+    def _carry_turns(self) -> None:
+        """The moves and move pairs the old blocks' rules ruled out stay ruled out between the
+        same slots of the new blocks: a graph gluing them holds the same left side."""
+        old, old_blocks, where = self.carry
+        self.carry = None
+        new = self.turns
+
+        def end(u: int, k: int) -> tuple[int, int] | None:
+            if u not in where:
+                return None
+            b, first = where[u]
+            v, i = old_blocks[u].gaps[k][0]
+            kk = new.slot_of[b].get((first + v, i))
+            return None if kk is None else (b, kk)
+
+        def move(m: int) -> int | None:
+            p, i, q, j = old.moves[m]
+            a, c = end(p, i), end(q, j)
+            return None if a is None or c is None else new.index.get((*a, *c))
+
+        for m in old.dead:
+            n = move(m)
+            if n is not None:
+                new.dead.add(n)
+        for m1, m2 in old.dead_pairs:
+            n1, n2 = move(m1), move(m2)
+            if n1 is not None and n2 is not None:
+                new.dead_pairs.add((n1, n2))
+        new._solved = False
 
     def _forbid(self, g: Graph) -> None:
         """Tell the turning analysis what an irreducible graph can no longer hold: a left side
@@ -469,12 +552,18 @@ class Inference:
             return
         on_border = set() if self.frame is None else \
             border_primitives(self.ex.primitives, border_labels(self.ex.labels, self.ex.classes))
+        own = {canonical_key(g, self.ring_len) for g in graphs}
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
             if on_border.intersection(g.verts):
                 continue      # it holds the frame, which generation starts from instead
-            grammar = Grammar(header(self.ex, False), self._rules())
+            rules = self._rules()     # with the starters added for earlier components
+            if self.frame is not None:
+                # In a frame only the example's own components stand free: a component must
+                # reduce without the starters framing drops (one module of a station, say).
+                rules, _ = frame_rules(rules, self.ex, own)
+            grammar = Grammar(header(self.ex, False), rules)
             # Past the time limit a component simply becomes a starter, which is always sound.
             deadline = float("inf") if self.limits.seconds is None \
                 else self.t0 + self.limits.seconds
@@ -509,7 +598,7 @@ class Inference:
             example=self.ex.name,
             primitives=len(self.rings),
             blocks=len(self.blocks),
-            hierarchy_graphs=len(self.hier.nodes),
+            hierarchy_graphs=self.spent + len(self.hier.nodes),
             irreducible=self.hier.count(KEPT),
             pruned=self.hier.count(PRUNED),
             rules=sum(1 for r in rules if not r.is_starter),

@@ -107,7 +107,9 @@ class SceneCost:
     def value(self, s: Stats) -> float:
         off = 0.0
         for ks, f in zip(self.groups, self.shares):
-            expected = f * s.edges
+            # Counts are predicted before a move is matched: a move that cannot match (one
+            # that deletes more than the drawing has) may predict fewer than no edges.
+            expected = max(0.0, f * s.edges)
             off += max(0.0, abs(sum(s.label_count[k] for k in ks) - expected)
                        - math.sqrt(expected))
         return self.size.value(s) + off
