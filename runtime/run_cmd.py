@@ -44,9 +44,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="write K drawings with seeds S…S+K−1, named PATH-0001.svg …")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="parallel processes")
     p.add_argument("--cost", metavar="NAME[:ARGS]",
-                   help="Metropolis cost: size[:N] (default, N = steps), scene[:N] (the "
-                        "default in a frame: size plus the example's proportions), "
-                        "density:D, label:NAME[:F], none")
+                   help="Metropolis cost: scene[:N] (default, N = steps: size plus the "
+                        "example's proportions), size[:N], density:D, label:NAME[:F], none")
     p.add_argument("--temperature", type=float, default=1.0, metavar="T",
                    help="Metropolis temperature (default 1; 0 refuses every cost increase)")
     p.add_argument("--limit", action="append", default=[], metavar="PRIORITY=N",

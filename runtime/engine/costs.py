@@ -8,13 +8,15 @@ Built in (`--cost NAME[:ARG[:ARG]]`):
 - `size[:N]`: grow to about N vertices (default: the number of steps asked for): the cost is
   N − n below N and (n − N)/4 above;
 - `scene[:N]`: `size[:N]` plus the example's proportions of face labels and of bare lines
-  (`SceneCost`); for a grammar with a frame only;
+  (`SceneCost`);
 - `density:D`: about D vertices per unit² of the drawing's bounding box;
 - `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
 - `none`: accept every placeable proposal.
 
-The default is `size` with N = steps, and in a frame `scene`: `size` plus the example's
-proportions (see `SceneCost`).
+The default is `scene` with N = steps: `size` plus the example's proportions (see
+`SceneCost`). With `size` alone a part that is easier to take away than to place fades out:
+a house's door is deleted at every try and added at one in three (it must fit its wall), so
+`examples/house.gg` ended with no door at all once its grammar added doors to houses.
 """
 
 from __future__ import annotations
@@ -85,12 +87,12 @@ class LabelCost:
 
 @dataclass(frozen=True)
 class SceneCost:
-    """The default in a frame: `size`, plus the example's proportions. Each group of edge
+    """The default: `size`, plus the example's proportions. Each group of edge
     labels is held near its share of all edges in the example, so that as the run grows the
     cheap parts do not crowd out the rest. The groups: per face label, the edges beside it
     (the edges beside a window, say); and per edge class, its bare lines in the open space,
     with that space on both sides (a castle's stubs, a flower's stems). The space itself
-    (the face just inside the frame) is no group: it is beside everything. Without the
+    (the face just inside the frame, or the exterior when there is no frame) is no group: it is beside everything. Without the
     bare-line groups only the size term saw those lines, and it rewards them: the castle grew
     combs of stubs up its towers' sides.
 
@@ -119,7 +121,7 @@ def default_cost(header, steps: int) -> Cost:
     """`size` with N = steps; in a frame, `SceneCost` with the example's proportions, read
     from the primitives' counts (each edge is seen from both of its ends)."""
     size = SizeCost(steps)
-    if header is None or header.frame is None:
+    if header is None:
         return size
     per_label = [0.0] * len(header.labels)
     for p in header.primitives:
@@ -135,8 +137,11 @@ def _scene_groups(header) -> list[tuple[int, ...]]:
     """The edge labels beside each face label but the space's, then each edge class's bare
     lines in the space (border classes aside: the frame is placed once)."""
     labels = header.labels
-    corner = header.primitives[header.frame.corners[0].prim]
-    space = {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}
+    if header.frame is None:
+        space = {header.exterior}
+    else:
+        corner = header.primitives[header.frame.corners[0].prim]
+        space = {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}
     faces = sorted({f for l in labels for f in (l.left, l.right)} - space)
     groups = [tuple(k for k, l in enumerate(labels) if face in (l.left, l.right))
               for face in faces]
@@ -210,9 +215,8 @@ def _label(args: list[str], labels, spec: str) -> Cost:
 
 
 def _scene(header, n: int) -> Cost:
-    if header is None or header.frame is None:
-        raise error("cost 'scene' needs a grammar with a frame", None,
-                    "draw the example inside a border loop, or use --cost size")
+    if header is None:
+        raise error("cost 'scene' needs a grammar's header", None, "use --cost size")
     return default_cost(header, n)
 
 
