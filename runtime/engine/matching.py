@@ -16,6 +16,8 @@ to the placement's crossing and face-label tests.
 
 from __future__ import annotations
 
+import functools
+import heapq
 from dataclasses import dataclass
 from typing import Iterator
 
@@ -258,39 +260,36 @@ def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
             out.append((v, u))
     placed = {**vmap, **{("w", e, j): s[0] for e, pair in wmap.items()
                          for j, s in enumerate(pair)}}
-    yield from _nearest_first(host, out, placed, wire)
+    pts = [host.pos[h] for h in placed.values()]
+    centre = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
     if wire:
         slots = _near_slots(host, placed, pattern.wire_slots[-1 - v])
         near = (((h, j), link[h][j]) for h, j in slots if link[h][j] is not None)
     else:
         near = ((v, h) for h in _near(host, placed, (want,)))
-    for cand in near:
-        ends = (cand[0][0], cand[1][0]) if wire else (cand[1],)
-        if not entry.vertices.isdisjoint(ends):
-            continue                    # on the walk, but not where the item goes
-        at = _corner(host, (v, i), {v: cand[1]} if not wire else {},
-                     {-1 - v: cand} if wire else {}, False)
-        if entry.shares_face(FaceWalk(link, host.pos, at, limit)) is not False:
-            yield cand
+
+    def facing(cands):
+        for cand in cands:
+            ends = (cand[0][0], cand[1][0]) if wire else (cand[1],)
+            if not entry.vertices.isdisjoint(ends):
+                continue                # on the walk, but not where the item goes
+            at = _corner(host, (v, i), {v: cand[1]} if not wire else {},
+                         {-1 - v: cand} if wire else {}, False)
+            if entry.shares_face(FaceWalk(link, host.pos, at, limit)) is not False:
+                yield cand
+
+    # One order for both kinds, nearest first: a place in another structure beside the parts
+    # is as good as one far along the face's walk.
+    key = functools.partial(_distance_key, host.pos, centre, wire)
+    yield from heapq.merge(sorted(out, key=key), facing(near), key=key)
 
 
-def _nearest_first(host: Host, cands: list, placed: dict, wire: bool) -> list:
-    """`cands` by distance from the parts already matched, then by vertex and slot (so the
-    grid's order does not matter): of the places a face offers, the nearest is the one a
-    rule's few edges can bridge."""
-    if len(cands) < 2:
-        return cands
-    pos = host.pos
-    pts = [pos[h] for h in placed.values()]
-    cx = sum(p[0] for p in pts) / len(pts)
-    cy = sum(p[1] for p in pts) / len(pts)
-    keyed = []
-    for c in cands:
-        h = c[0] if wire else (c[1], 0)
-        p = pos[h[0]]
-        keyed.append(((p[0] - cx) ** 2 + (p[1] - cy) ** 2, h, c))
-    keyed.sort(key=lambda kc: kc[:2])
-    return [c for _, _, c in keyed]
+def _distance_key(pos, centre, wire: bool, cand) -> tuple:
+    """A candidate's order: its distance from the parts matched (squared), then its vertex and
+    slot, so that the grid's order does not matter (the order Grid.nearest_first gives)."""
+    h = cand[0] if wire else (cand[1], 0)
+    p = pos[h[0]]
+    return (p[0] - centre[0]) ** 2 + (p[1] - centre[1]) ** 2, h
 
 
 def _near(host: Host, near: dict, prims) -> Iterator[int]:
