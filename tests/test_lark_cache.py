@@ -69,9 +69,15 @@ def test_a_torn_or_foreign_cache_file_is_rebuilt(tmp_path, monkeypatch):
 
 
 def test_the_cache_can_be_turned_off_or_be_unwritable(tmp_path, monkeypatch):
+    home = tmp_path / "home"
+    monkeypatch.setenv("XDG_CACHE_HOME", str(home))
     monkeypatch.setenv("GG_CACHE_DIR", "off")
     _gg()
+    assert not home.exists()                 # off: nothing written, not even the default place
+    monkeypatch.delenv("GG_CACHE_DIR")
+    _gg()
+    assert list(home.rglob("gg_grammar-*.json"))     # the default place, when it is on
     monkeypatch.setenv("GG_CACHE_DIR", str(tmp_path / "file"))
     (tmp_path / "file").write_text("not a directory")
     assert _parse(_gg(), GG_TEXTS[0]) == _parse(gg_parser._lark(), GG_TEXTS[0])
-    assert list(tmp_path.iterdir()) == [tmp_path / "file"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file", "home"]

@@ -10,6 +10,8 @@ at `v` with the outgoing half-edge just clockwise of `v→u`.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 
@@ -73,7 +75,7 @@ class FaceWalk:
     on a host instead of a rule side), so it lies on the walk's right. `pos[v]` places v."""
 
     def __init__(self, link, pos, corner: tuple[int, int], limit: int):
-        self.start = corner
+        self.start, self._pos = corner, pos
         walk, v, i = [], *corner
         self.closed = False
         for _ in range(limit):
@@ -88,16 +90,21 @@ class FaceWalk:
         self.corners = walk
         self.at = set(walk)
         self.vertices = {v for v, _ in walk}
-        # A closed walk with its face on the right that turns clockwise bounds its face from
-        # outside; one that turns the other way (or encloses nothing: a tree) runs round the
-        # outside of its structure, a hole in some face.
+
+    @functools.cached_property
+    def encloses(self) -> bool:
+        """Whether the walk bounds its face from outside: closed, with its face on the right,
+        it turns clockwise. One that turns the other way (or encloses nothing: a tree) runs
+        round the outside of its structure, a hole in some face. Worked out when asked (a
+        splice's walks mostly decide without it)."""
+        if not self.closed:
+            return False
         area = scale = 0.0
-        if self.closed:
-            pts = [pos[v] for v, _ in walk]
-            for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]):
-                area += x0 * y1 - x1 * y0
-                scale += abs(x0 * y1) + abs(x1 * y0)
-        self.encloses = self.closed and area < -1e-9 * scale
+        pts = [self._pos[v] for v, _ in self.corners]
+        for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]):
+            area += x0 * y1 - x1 * y0
+            scale += abs(x0 * y1) + abs(x1 * y0)
+        return area < -1e-9 * scale
 
     def shares_face(self, other: "FaceWalk") -> bool | None:
         """Whether the two walks' corners lie in one face: True, False, or None when walks

@@ -118,8 +118,9 @@ class SceneCost:
 
 
 def default_cost(header, steps: int) -> Cost:
-    """`size` with N = steps; in a frame, `SceneCost` with the example's proportions, read
-    from the primitives' counts (each edge is seen from both of its ends)."""
+    """`SceneCost`: `size` with N = steps and the example's proportions, read from the
+    primitives' counts (each edge is seen from both of its ends); `size` alone with no
+    header."""
     size = SizeCost(steps)
     if header is None:
         return size

@@ -27,6 +27,7 @@ from grammar_lang.algorithms.faces import FaceWalk
 from grammar_lang.algorithms.matching import extend, walk_plans
 from grammar_lang.graph import Side, Slot
 
+from ..geometry.spatial import Point
 from .host import Host
 
 @dataclass(frozen=True)
@@ -263,10 +264,10 @@ def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
     pts = [host.pos[h] for h in placed.values()]
     centre = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
     if wire:
-        slots = _near_slots(host, placed, pattern.wire_slots[-1 - v])
+        slots = _near_slots(host, placed, centre, pattern.wire_slots[-1 - v])
         near = (((h, j), link[h][j]) for h, j in slots if link[h][j] is not None)
     else:
-        near = ((v, h) for h in _near(host, placed, (want,)))
+        near = ((v, h) for h in _near(host, placed, centre, (want,)))
 
     def facing(cands):
         for cand in cands:
@@ -292,26 +293,26 @@ def _distance_key(pos, centre, wire: bool, cand) -> tuple:
     return (p[0] - centre[0]) ** 2 + (p[1] - centre[1]) ** 2, h
 
 
-def _near(host: Host, near: dict, prims) -> Iterator[int]:
+def _near(host: Host, near: dict, centre: Point, prims) -> Iterator[int]:
     """The vertices of the primitives `prims` in the grid's cells within the splice radius of
     the box around the host vertices `near` (a superset of those within the radius), nearest
-    first: by distance from their centroid, then id (so the grid's order does not matter),
-    found lazily (the first few are usually all a search takes)."""
+    first: by distance from `centre` (their centroid), then id (so the grid's order does not
+    matter), found lazily (the first few are usually all a search takes)."""
     xs = [host.pos[h][0] for h in near.values()]
     ys = [host.pos[h][1] for h in near.values()]
     r = SPLICE_RADIUS * host.t.unit
-    centre = (sum(xs) / len(xs), sum(ys) / len(ys))
     return host.grid.nearest_first(min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r,
                                    centre, prims)
 
 
-def _near_slots(host: Host, placed: dict, wire_slots) -> Iterator[tuple[int, int]]:
+def _near_slots(host: Host, placed: dict, centre: Point,
+                wire_slots) -> Iterator[tuple[int, int]]:
     """The (vertex, slot) pairs of `wire_slots` ((primitive, slot) pairs) at the vertices near
     `placed`, in order of distance, vertex and slot."""
     slots: dict[int, list[int]] = {}
     for p, i in sorted(wire_slots, key=lambda pi: pi[1]):
         slots.setdefault(p, []).append(i)
-    for h in _near(host, placed, list(slots)):
+    for h in _near(host, placed, centre, list(slots)):
         for i in slots[host.prim[h]]:
             yield h, i
 
