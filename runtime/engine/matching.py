@@ -239,15 +239,28 @@ def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
     through the grid, unless their own face walk shows them on another face: what walks
     cannot tell (a face's holes: other structures) is left to the placement's crossing and
     face-label tests."""
-    prev, (v, i) = pattern.entries[k]
-    t, link, prim = host.t, host.link, host.prim
+    prev, item = pattern.entries[k]
     limit = _walk_limit(host, rng)
     wire = pattern.order[k] >= len(pattern.components)
-    if wire:
-        tok = pattern.side.wires[-1 - v] ^ i        # the token the item carries
-    else:
-        want = pattern.side.vertices[v]
-    entry = FaceWalk(link, host.pos, _corner(host, prev, vmap, wmap, True), limit)
+    entry = FaceWalk(host.link, host.pos, _corner(host, prev, vmap, wmap, True), limit)
+    placed = {**vmap, **{("w", e, j): s[0] for e, pair in wmap.items()
+                         for j, s in enumerate(pair)}}
+    pts = [host.pos[h] for h in placed.values()]
+    centre = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
+    on_walk = _on_walk(host, pattern, item, wire, entry)
+    near = _facing(host, item, wire, entry, limit,
+                   _near_candidates(host, pattern, item, wire, placed, centre))
+    # One order for both kinds, nearest first: a place in another structure beside the parts
+    # is as good as one far along the face's walk.
+    key = functools.partial(_distance_key, host.pos, centre, wire)
+    yield from heapq.merge(sorted(on_walk, key=key), near, key=key)
+
+
+def _on_walk(host: Host, pattern: Pattern, item: Slot, wire: bool, entry: FaceWalk) -> list:
+    """The candidates for `item` at the corners of the walk `entry`."""
+    v, i = item
+    t, link, prim = host.t, host.link, host.prim
+    tok = pattern.side.wires[-1 - v] ^ i if wire else None    # the token a wire item carries
     out = []
     for u, c in entry.corners:
         nxt = (c + 1) % len(link[u])
@@ -257,32 +270,32 @@ def _on_face(host: Host, pattern: Pattern, k: int, vmap: dict, wmap: dict, rng):
             if t.rings[prim[u]][nxt] == tok and link[u][nxt] is not None:
                 s = (u, nxt)
                 out.append((link[u][nxt], s) if i == 0 else (s, link[u][nxt]))
-        elif nxt == i and prim[u] == want:
+        elif nxt == i and prim[u] == pattern.side.vertices[v]:
             out.append((v, u))
-    placed = {**vmap, **{("w", e, j): s[0] for e, pair in wmap.items()
-                         for j, s in enumerate(pair)}}
-    pts = [host.pos[h] for h in placed.values()]
-    centre = (sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts))
+    return out
+
+
+def _near_candidates(host: Host, pattern: Pattern, item: Slot, wire: bool, placed: dict,
+                     centre: Point) -> Iterator:
+    """The candidates for `item` near the parts `placed`, through the grid, nearest first."""
+    v, _ = item
     if wire:
         slots = _near_slots(host, placed, centre, pattern.wire_slots[-1 - v])
-        near = (((h, j), link[h][j]) for h, j in slots if link[h][j] is not None)
-    else:
-        near = ((v, h) for h in _near(host, placed, centre, (want,)))
+        return (((h, j), host.link[h][j]) for h, j in slots if host.link[h][j] is not None)
+    return ((v, h) for h in _near(host, placed, centre, (pattern.side.vertices[v],)))
 
-    def facing(cands):
-        for cand in cands:
-            ends = (cand[0][0], cand[1][0]) if wire else (cand[1],)
-            if not entry.vertices.isdisjoint(ends):
-                continue                # on the walk, but not where the item goes
-            at = _corner(host, (v, i), {v: cand[1]} if not wire else {},
-                         {-1 - v: cand} if wire else {}, False)
-            if entry.shares_face(FaceWalk(link, host.pos, at, limit)) is not False:
-                yield cand
 
-    # One order for both kinds, nearest first: a place in another structure beside the parts
-    # is as good as one far along the face's walk.
-    key = functools.partial(_distance_key, host.pos, centre, wire)
-    yield from heapq.merge(sorted(out, key=key), facing(near), key=key)
+def _facing(host: Host, item: Slot, wire: bool, entry: FaceWalk, limit: int, cands) -> Iterator:
+    """The candidates off the walk `entry` whose own walk is not known to bound another face."""
+    v, _ = item
+    for cand in cands:
+        ends = (cand[0][0], cand[1][0]) if wire else (cand[1],)
+        if not entry.vertices.isdisjoint(ends):
+            continue                # on the walk, but not where the item goes
+        at = _corner(host, item, {v: cand[1]} if not wire else {},
+                     {-1 - v: cand} if wire else {}, False)
+        if entry.shares_face(FaceWalk(host.link, host.pos, at, limit)) is not False:
+            yield cand
 
 
 def _distance_key(pos, centre, wire: bool, cand) -> tuple:
