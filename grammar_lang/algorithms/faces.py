@@ -64,7 +64,6 @@ def boundary_cycles(xy: np.ndarray, edges: np.ndarray
     return np.array(cycle_of, dtype=np.int64), cycles
 
 
-
 class FaceWalk:
     """The face of a graph of rings that a corner lies in, walked from that corner: at most
     `limit` corners (a random search's bound in a drawing with a huge face).
@@ -72,14 +71,18 @@ class FaceWalk:
     `link[v][i]` is the (vertex, slot) glued to slot i of v, or None. Corner (v, i) is the
     sector of v between slot i and the next slot counter-clockwise; the face goes on along
     that next slot's edge, into the corner after the slot it reaches (graph.face_walk's rule,
-    on a host instead of a rule side), so it lies on the walk's right. `pos[v]` places v."""
+    on a host instead of a rule side), so it lies on the walk's right. `pos[v]` places v.
+    With `until`, the walk stops once it reaches that corner (asked only whether it does)."""
 
-    def __init__(self, link, pos, corner: tuple[int, int], limit: int):
+    def __init__(self, link, pos, corner: tuple[int, int], limit: int,
+                 until: tuple[int, int] | None = None):
         self.start, self._pos = corner, pos
         walk, v, i = [], *corner
         self.closed = False
         for _ in range(limit):
             walk.append((v, i))
+            if (v, i) == until:
+                break
             s = link[v][(i + 1) % len(link[v])]
             if s is None:
                 break

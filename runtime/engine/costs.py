@@ -92,9 +92,9 @@ class SceneCost:
     cheap parts do not crowd out the rest. The groups: per face label, the edges beside it
     (the edges beside a window, say); and per edge class, its bare lines in the open space,
     with that space on both sides (a castle's stubs, a flower's stems). The space itself
-    (the face just inside the frame, or the exterior when there is no frame) is no group: it is beside everything. Without the
-    bare-line groups only the size term saw those lines, and it rewards them: the castle grew
-    combs of stubs up its towers' sides.
+    (the face just inside the frame, or the exterior when there is no frame) is no group: it
+    is beside everything. Without the bare-line groups only the size term saw those lines,
+    and it rewards them: the castle grew combs of stubs up its towers' sides.
 
     A group costs the edges by which its count strays from share·edges beyond √(share·edges),
     the spread of a count drawn at random with that share: a scene that starts from its

@@ -346,7 +346,8 @@ def _faces_shared(host: Host, pattern: Pattern, vmap: dict, wmap: dict, limit: i
     two faces (see FaceWalk.shares_face)."""
     for a, b in pattern.jumps:
         goal = _corner(host, b, vmap, wmap, False)
-        walk = FaceWalk(host.link, host.pos, _corner(host, a, vmap, wmap, True), limit)
+        # Walked only as far as the goal: most jumps reach it within a few corners.
+        walk = FaceWalk(host.link, host.pos, _corner(host, a, vmap, wmap, True), limit, goal)
         if goal not in walk.at and \
                 walk.shares_face(FaceWalk(host.link, host.pos, goal, limit)) is False:
             return False
