@@ -295,12 +295,14 @@ class Inference:
 
     def _recheck(self) -> None:
         """Try every irreducible graph again as a left side against newer, simpler graphs;
-        then prune those that the faces the rules leave (faces.py) rule out."""
+        then prune those still to be expanded that the faces the rules leave (faces.py) rule
+        out."""
         self._recheck_rules()
         if self.pending is not None or self._out_of_time():
             return
         self.turns.kill_by_faces()
-        for node in self.hier.kept():
+        for nid in self.frontier:      # not yet expanded
+            node = self.hier.nodes[nid]
             if node.status == KEPT and self.turns.dead_end(node.graph):
                 node.status = PRUNED
                 self.matcher.remove(node.id)

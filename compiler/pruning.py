@@ -83,6 +83,7 @@ class TurnAnalysis:
         # a face that glues one is no face of an irreducible graph. None: no rules known.
         self.holds_left_side: Callable[[Graph], bool] | None = None
         self._solved = False
+        self._faced = False     # no rule or ruled-out move since the faces were last read
 
     def unit_slots(self, g: Graph) -> list[tuple[int, int]] | None:
         """Each open slot of g as (unit, slot of that unit), or None if g's units are unknown."""
@@ -103,22 +104,22 @@ class TurnAnalysis:
 
     def forbid_unit(self, p: int) -> None:
         self.dead.update(k for k, m in enumerate(self.moves) if m[0] == p or m[2] == p)
-        self._solved = False
+        self.unsolve()
 
     def forbid_edge(self, p: int, i: int, q: int, j: int) -> None:
         for m in ((p, i, q, j), (q, j, p, i)):
             if m in self.index:
                 self.dead.add(self.index[m])
-        self._solved = False
+        self.unsolve()
 
     def forbid_pair(self, first: Move, second: Move) -> None:
         """No face walk makes move `second` right after `first`."""
         if first in self.index and second in self.index:
             self.dead_pairs.add((self.index[first], self.index[second]))
-            self._solved = False
+            self.unsolve()
 
     def unsolve(self) -> None:
-        self._solved = False
+        self._solved = self._faced = False
 
     def solve(self) -> None:
         if not self._solved:
@@ -149,7 +150,7 @@ class TurnAnalysis:
         the faces through the gap it lands on that end with it.) An edge has a move on each
         side, so its twin dies too. Until none dies; a search per move, so the hierarchy asks
         for it once a generation."""
-        killed = True
+        killed = not self._faced
         while killed:
             self.solve()
             killed = False
@@ -160,6 +161,7 @@ class TurnAnalysis:
                 if walks is not None and all(self._forbidden(w) for w in walks):
                     self.dead.update((b, self.index[(q, j, p, i)]))
                     self._solved, killed = False, True
+        self._faced = True
 
     def _forbidden(self, walk) -> bool:
         if self.holds_left_side is None:

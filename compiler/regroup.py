@@ -103,6 +103,8 @@ def _forced_faces(turns: TurnAnalysis, blocks: Sequence[Graph],
         if walks is not None and all(_rotation_key(w) in forced for w in walks):
             claimed.add(u)
     parts = [u for u in live if u not in claimed]
+    if len(parts) + len(forced) >= len(live):
+        return None     # a restart costs the graphs met so far: only for fewer blocks
     pairs = []
     for key in sorted(forced):
         w = forced[key]
