@@ -25,6 +25,9 @@ finite, so the face turns at least t_k plus the shortest way back; if that excee
 cannot close, and neither can any descendant of G (gluing only adds to the walk back).
 Symmetrically for components turning strictly downward and faces below −1. A gap with no way
 back at all is also a dead end.
+
+Whole faces rule out more (faces.py, `kill_by_faces`): a move whose every face glues a rule's
+left side is on no irreducible graph, whichever units the rule spans.
 """
 
 from __future__ import annotations
@@ -187,9 +190,7 @@ class TurnAnalysis:
         self._ways: dict[tuple[Slot, Slot], Turns | None] = {}
         self.low = self._by_component(w)                               # −inf: a negative cycle
         self.high = -self._by_component(np.where(np.isfinite(w), -w, INF))  # +inf: positive
-        self._follow = [[] if a in self.dead else
-                        [b for b in np.flatnonzero(np.isfinite(w[a])).tolist()]
-                        for a in range(n)]
+        self._follow = [np.flatnonzero(np.isfinite(w[a])).tolist() for a in range(n)]
         self._closing: dict[int, tuple[list[float], list[float]]] = {}
 
     def _by_component(self, w: np.ndarray) -> np.ndarray:

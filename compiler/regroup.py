@@ -11,6 +11,10 @@ can start again from them (merged as `grouping.merge` does, forced cycles closed
 rules found so far. The space station's module is the example: once its blocks with rigid trims
 are reduced, its left, right and lower corners pair off into one block, and the rule that adds a
 module under a connector is a few gluings away instead of six.
+
+When no slot pair is forced, a face may be: the only face a complete graph can close through
+some gap of a unit is one ring of units (faces.py), which then becomes one block. The station's
+closed top and connector each come with the module body below them so.
 """
 
 from __future__ import annotations
@@ -28,17 +32,17 @@ def regroup(turns: TurnAnalysis, blocks: Sequence[Graph]) -> tuple[list[int], li
     """The parts to merge (blocks, a block once per instance it is merged as) and the forced
     pairs between them (by part), or None when nothing is forced: forced pairs of slots if
     there are any, else forced faces."""
-    dead = _dead_blocks(turns)
+    dead, dead_moves = _dead_blocks(turns), set(turns.dead)
     pairs = []
     for u, ring in enumerate(turns.rings):
         if u in dead:
             continue
         for k in range(len(ring)):
-            ends = _live(turns, u, k, set(turns.dead), dead)
+            ends = _live(turns, u, k, dead_moves, dead)
             if len(ends) != 1:
                 continue
             q, j = ends[0]
-            if q > u and _live(turns, q, j, set(turns.dead), dead) == [(u, k)]:
+            if q > u and _live(turns, q, j, dead_moves, dead) == [(u, k)]:
                 pairs.append((u, blocks[u].gaps[k][0], q, blocks[q].gaps[j][0]))
     live = [u for u in range(len(blocks)) if u not in dead]
     if pairs:
