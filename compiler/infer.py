@@ -604,7 +604,17 @@ class Inference:
         if self.frame is None or not self.ex.options.connected:
             return set()
         from .verify import Reducer
+
+        def reduces(rules: tuple[Rule, ...], g: Graph) -> bool:
+            grammar = Grammar(header(self.ex, False), rules)
+            return Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g)
+
         kept, _ = frame_rules(self._rules(), self.ex, own)
+        border = border_primitives(self.ex.primitives,
+                                   border_labels(self.ex.labels, self.ex.classes))
+        # Components that hold the frame reduce to it whatever the starters; those that
+        # reduce without a dropped starter do not show that they reach it.
+        free = [g for g in graphs if not border.intersection(g.verts) and not reduces(kept, g)]
         out = set()
         for r in self._rules():
             if not r.is_starter or r in kept:
@@ -612,9 +622,7 @@ class Inference:
             key = canonical_key(side_graph(r.lhs), self.ring_len)
             if not frame_rules((r,), self.ex, {key})[0]:
                 continue      # dropped for holding the frame, not for being no example part
-            grammar = Grammar(header(self.ex, False), kept + (r,))
-            if any(Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g)
-                   for g in graphs):
+            if any(reduces(kept + (r,), g) for g in free):
                 out.add(key)
         return out
 
