@@ -32,31 +32,45 @@ def faces_through(turns: "TurnAnalysis", u: int, k: int, end: int | None = None
     """Every walk of live moves that can be a face through gap k of unit u (turns ±1), or None
     when the search cannot list them all; with `end`, only those that land on the gap by that
     move (a gap may have endless faces, as many as siblings on a line, but few by one move)."""
+    found = []
+    for walk in iter_faces(turns, u, k, end):
+        if walk is None:
+            return None
+        found.append(walk)
+    return found
+
+
+def iter_faces(turns: "TurnAnalysis", u: int, k: int, end: int | None = None):
+    """The walks of `faces_through` one by one, then None if the search gave up: a caller
+    that needs one face of some kind can stop at the first."""
     ring = len(turns.rings[u])
     ends = [b for b in turns.landing.get((u, k), ())
             if b not in turns.dead and end in (None, b)]
-    found: list[Walk] = []
     steps = 0
+    comp = turns.comp_of
+    # Per component: the least and greatest turns from each move on to a closing move.
+    bounds: dict[int, list] = {}
     stack = [((a,), turns.turns[a]) for a in reversed(turns.live_leaving(u, (k + 1) % ring))]
     while stack:
         walk, total = stack.pop()
         steps += 1
         if steps > FACE_STEPS:
-            return None
-        last, comp = walk[-1], turns.comp[walk[0]]
+            yield None
+            return
+        last, home = walk[-1], comp[walk[0]]
         if last in ends and total in (-1, 1):
-            found.append(walk)
-        # The least and greatest turns of a walk on from a move to a closing one.
-        bounds = [turns.closing(e) for e in ends if turns.comp[e] == comp]
+            yield walk
+        if home not in bounds:
+            bounds[home] = [turns.closing(e) for e in ends if comp[e] == home]
         for b in reversed(turns.follow(last)):
-            if turns.comp[b] != comp or not any(
+            if comp[b] != home or not any(
                     lo[b] + total <= -1 <= hi[b] + total or lo[b] + total <= 1 <= hi[b] + total
-                    for lo, hi in bounds):
+                    for lo, hi in bounds[home]):
                 continue
             if len(walk) == FACE_MOVES:
-                return None
+                yield None
+                return
             stack.append((walk + (b,), total + turns.turns[b]))
-    return found
 
 
 def face_units(turns: "TurnAnalysis", walk: Walk) -> list[int]:

@@ -300,7 +300,8 @@ class Inference:
         self._recheck_rules()
         if self.pending is not None or self._out_of_time():
             return
-        self.turns.kill_by_faces()
+        if not self.turns.kill_by_faces():
+            return
         for nid in self.frontier:      # not yet expanded
             node = self.hier.nodes[nid]
             if node.status == KEPT and self.turns.dead_end(node.graph):

@@ -40,7 +40,7 @@ from scipy.sparse.csgraph import connected_components
 
 from grammar_lang import boundary as bd
 
-from .faces import face_graph, faces_through
+from .faces import face_graph, iter_faces
 from .gluing import Graph, Slot, primitive_graph, unit_places
 
 INF = float("inf")
@@ -147,24 +147,33 @@ class TurnAnalysis:
         self._solve_walks()
         self._solved = True
 
-    def kill_by_faces(self) -> None:
+    def kill_by_faces(self) -> bool:
         """Kill the moves that lie on no face an irreducible complete graph can have: on none
         that turns ±1 at all, or only on faces that glue a rule's left side. (A move lies on
         the faces through the gap it lands on that end with it.) An edge has a move on each
         side, so its twin dies too. Until none dies; a search per move, so the hierarchy asks
-        for it once a generation."""
-        killed = not self._faced
-        while killed:
+        for it once a generation. Whether any died."""
+        todo = None if self._faced else range(len(self.moves))
+        any_died = False
+        while todo:
             self.solve()
-            killed = False
-            for b, (p, i, q, j) in enumerate(self.moves):
+            died = set()
+            for b in todo:
                 if b in self.dead:
                     continue
-                walks = faces_through(self, q, j, end=b)
-                if walks is not None and all(self._forbidden(w) for w in walks):
-                    self.dead.update((b, self.index[(q, j, p, i)]))
-                    self._solved, killed = False, True
+                p, i, q, j = self.moves[b]
+                # It lives on as soon as one face is possible (or the search gives up).
+                if all(w is not None and self._forbidden(w)
+                       for w in iter_faces(self, q, j, end=b)):
+                    twin = self.index[(q, j, p, i)]
+                    self.dead.update((b, twin))
+                    died.update((self.comp_of[b], self.comp_of[twin]))
+            if died:
+                self._solved, any_died = False, True
+            # A face stays in one strong component: only those that lost a move change.
+            todo = [b for b in range(len(self.moves)) if self.comp_of[b] in died]
         self._faced = True
+        return any_died
 
     def _forbidden(self, walk) -> bool:
         if self.holds_left_side is None:
@@ -190,7 +199,10 @@ class TurnAnalysis:
         self._ways: dict[tuple[Slot, Slot], Turns | None] = {}
         self.low = self._by_component(w)                               # −inf: a negative cycle
         self.high = -self._by_component(np.where(np.isfinite(w), -w, INF))  # +inf: positive
-        self._follow = [np.flatnonzero(np.isfinite(w[a])).tolist() for a in range(n)]
+        self._follow: list[list[int]] = [[] for _ in range(n)]
+        for a, b in zip(*(x.tolist() for x in np.nonzero(np.isfinite(w)))):
+            self._follow[a].append(b)
+        self.comp_of = self.comp.tolist()
         self._closing: dict[int, tuple[list[float], list[float]]] = {}
 
     def _by_component(self, w: np.ndarray) -> np.ndarray:
