@@ -91,6 +91,8 @@ def face_graph(turns: "TurnAnalysis", walk: Walk) -> Graph | None:
     for n, m in enumerate(walk[:-1]):
         p, i, q, j = turns.moves[m]
         (v, a), t = blocks[p].gaps[i][0], blocks[q].gaps[j][0]
+        if (first[n] + v, a) not in {s for s, _ in g.gaps}:
+            return None     # it leaves a unit by the slot it came in by (a stub): no ring
         first.append(len(g.verts))
         g = branch_glue(g, (first[n] + v, a), blocks[q], t, rings, q)
     p, i, q, j = turns.moves[walk[-1]]
