@@ -34,6 +34,7 @@ from grammar_lang.rules import Grammar, Header, Rule
 from . import grouping
 from .regroup import regroup
 from .canon import canonical_key, split
+from .apply import side_graph
 from .framing import frame_rules, frame_starters, frame_with_start
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
@@ -130,6 +131,7 @@ class Inference:
         self.spent = 0        # graphs of the hierarchies started again from other blocks
         self.group = group
         self.carry = None     # what a regrouping passes on to the next turning analysis
+        self.own_extra: set = set()   # starters a framed example's components reduce to
         self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None,
@@ -143,6 +145,7 @@ class Inference:
         self.hier = Hierarchy(self.ring_len)
         self.matcher = Matcher(splice=self.splice)
         self.turns = TurnAnalysis(self.rings, self.blocks)
+        self.turns.holds_left_side = self._face_holds_left_side
         self.state = _State(limits_hit=self.limits_hit)
         for r in kept:
             self._index_rule(r)
@@ -284,8 +287,28 @@ class Inference:
                 return True
         return False
 
+    def _face_holds_left_side(self, g: Graph) -> bool:
+        """Whether a face's ring of units holds the left side of a rule that reduces every
+        graph holding it (one with no §5.4 exceptions; a starter's is a whole graph)."""
+        rules = [k for k, r in enumerate(self.state.rules) if not r.exceptions]
+        return self._holds_left_side(g, None, rules)
+
     def _recheck(self) -> None:
-        """Try every irreducible graph again as a left side against newer, simpler graphs."""
+        """Try every irreducible graph again as a left side against newer, simpler graphs;
+        then prune those still to be expanded that the faces the rules leave (faces.py) rule
+        out."""
+        self._recheck_rules()
+        if self.pending is not None or self._out_of_time():
+            return
+        if not self.turns.kill_by_faces():
+            return
+        for nid in self.frontier:      # not yet expanded
+            node = self.hier.nodes[nid]
+            if node.status == KEPT and self.turns.dead_end(node.graph):
+                node.status = PRUNED
+                self.matcher.remove(node.id)
+
+    def _recheck_rules(self) -> None:
         for node in self.hier.kept():
             if node.status != KEPT or node.checked == self.matcher.version:
                 continue
@@ -326,8 +349,10 @@ class Inference:
                 return
         idx = self._index_rule(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         node.status = RULE
-        if not exceptions and not starter:
-            self._forbid(g)
+        if not exceptions:
+            self.turns.unsolve()     # the faces that glue this left side are gone
+            if not starter:
+                self._forbid(g)
         self._drop_holders(idx, node.id)
 
     def _index_rule(self, r: _Rule) -> int:
@@ -345,10 +370,8 @@ class Inference:
         found = regroup(self.turns, self.blocks)
         if found is None:
             return
-        live, pairs = found
-        at = {u: n for n, u in enumerate(live)}
-        merged, place = grouping.merge([self.blocks[u] for u in live],
-                                       [(at[p], s, at[q], t) for p, s, q, t in pairs],
+        parts, pairs = found
+        merged, place = grouping.merge([self.blocks[u] for u in parts], pairs,
                                        self.rings, self.loops)
         size = [0] * len(merged)
         for b, _ in place:
@@ -359,9 +382,11 @@ class Inference:
         order = sorted(range(len(merged)),
                        key=lambda b: (size[b] > 1, len(merged[b].verts) * (size[b] > 1), b))
         new_id = {b: n for n, b in enumerate(order)}
-        where = {u: (new_id[place[n][0]], place[n][1]) for n, u in enumerate(live)}
+        where: dict[int, list[tuple[int, int]]] = {}      # old block → (new block, first vertex)
+        for n, u in enumerate(parts):
+            where.setdefault(u, []).append((new_id[place[n][0]], place[n][1]))
         original = {new_id[b] for b in range(len(merged))
-                    if all(u in self.original for n, u in enumerate(live) if place[n][0] == b)}
+                    if all(u in self.original for n, u in enumerate(parts) if place[n][0] == b)}
         self.carry = (self.turns, self.blocks, where)
         self.pending = ([merged[b] for b in order], original, None)
 
@@ -372,28 +397,25 @@ class Inference:
         self.carry = None
         new = self.turns
 
-        def end(u: int, k: int) -> tuple[int, int] | None:
-            if u not in where:
-                return None
-            b, first = where[u]
-            v, i = old_blocks[u].gaps[k][0]
-            kk = new.slot_of[b].get((first + v, i))
-            return None if kk is None else (b, kk)
+        def ends(u: int, k: int) -> list[tuple[int, int]]:
+            out = []
+            for b, first in where.get(u, ()):
+                v, i = old_blocks[u].gaps[k][0]
+                kk = new.slot_of[b].get((first + v, i))
+                if kk is not None:
+                    out.append((b, kk))
+            return out
 
-        def move(m: int) -> int | None:
+        def moves(m: int) -> list[int]:
             p, i, q, j = old.moves[m]
-            a, c = end(p, i), end(q, j)
-            return None if a is None or c is None else new.index.get((*a, *c))
+            return [new.index[(*a, *c)] for a in ends(p, i) for c in ends(q, j)
+                    if (*a, *c) in new.index]
 
         for m in old.dead:
-            n = move(m)
-            if n is not None:
-                new.dead.add(n)
+            new.dead.update(moves(m))
         for m1, m2 in old.dead_pairs:
-            n1, n2 = move(m1), move(m2)
-            if n1 is not None and n2 is not None:
-                new.dead_pairs.add((n1, n2))
-        new._solved = False
+            new.dead_pairs.update((n1, n2) for n1 in moves(m1) for n2 in moves(m2))
+        new.unsolve()
 
     def _forbid(self, g: Graph) -> None:
         """Tell the turning analysis what an irreducible graph can no longer hold: a left side
@@ -553,6 +575,8 @@ class Inference:
         on_border = set() if self.frame is None else \
             border_primitives(self.ex.primitives, border_labels(self.ex.labels, self.ex.classes))
         own = {canonical_key(g, self.ring_len) for g in graphs}
+        own |= self._reached_starters(graphs, own)
+        self.own_extra = own
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
@@ -571,6 +595,37 @@ class Inference:
                 continue
             node, _ = self.hier.lookup_or_add(g, self.generation, None)
             self._add_rule(node, None)
+
+    def _reached_starters(self, graphs: list[Graph], own: set) -> set:
+        """In a frame, the starters framing would drop that an example component of a
+        connected example reduces to: kept, they build nothing that the example's own starter
+        would not (every rule keeps a connected graph connected, so the component reduces to
+        that one graph, and back), and `ggc verify` finds that graph reducible. A lone module
+        of the space station is one."""
+        if self.frame is None or not self.ex.options.connected:
+            return set()
+        from .verify import Reducer
+
+        def reduces(rules: tuple[Rule, ...], g: Graph) -> bool:
+            grammar = Grammar(header(self.ex, False), rules)
+            return Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g)
+
+        kept, _ = frame_rules(self._rules(), self.ex, own)
+        border = border_primitives(self.ex.primitives,
+                                   border_labels(self.ex.labels, self.ex.classes))
+        # Components that hold the frame reduce to it whatever the starters; those that
+        # reduce without a dropped starter do not show that they reach it.
+        free = [g for g in graphs if not border.intersection(g.verts) and not reduces(kept, g)]
+        out = set()
+        for r in self._rules():
+            if not r.is_starter or r in kept:
+                continue
+            key = canonical_key(side_graph(r.lhs), self.ring_len)
+            if not frame_rules((r,), self.ex, {key})[0]:
+                continue      # dropped for holding the frame, not for being no example part
+            if any(reduces(kept + (r,), g) for g in free):
+                out.add(key)
+        return out
 
     def _rules(self) -> tuple[Rule, ...]:
         return tuple(self.structural) + tuple(r.rule for r in self.state.rules)
@@ -591,7 +646,7 @@ class Inference:
         dropped = 0
         if self.frame is not None:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
-            rules, dropped = frame_rules(rules, self.ex, own)
+            rules, dropped = frame_rules(rules, self.ex, own | self.own_extra)
             rules += frame_starters(self.ex, example_slots(self.ex))
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(

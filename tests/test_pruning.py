@@ -65,6 +65,20 @@ def test_dead_ends_have_no_complete_descendants(name, choices):
             assert not _has_complete_descendant(g, prims, rings, slots, extra=4)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(sorted(EXAMPLES)), st.lists(st.integers(0, 10_000), min_size=2, max_size=10))
+def test_moves_on_no_face_are_on_no_complete_graph(name, choices):
+    # Without rules, kill_by_faces kills only moves that lie on no face turning ±1: a graph
+    # that glues one of them still has no complete descendant.
+    rings = [p.ring for p in EXAMPLES[name].primitives]
+    analysis = TurnAnalysis(rings)
+    analysis.kill_by_faces()
+    graphs, prims, slots = _grow(rings, choices)
+    for g in graphs:
+        if not g.is_complete and analysis.dead_end(g):
+            assert not _has_complete_descendant(g, prims, rings, slots, extra=4)
+
+
 def test_the_square_closes_and_its_spirals_are_dead_ends():
     ex = EXAMPLES["square-filled"]
     rings = [p.ring for p in ex.primitives]
