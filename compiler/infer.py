@@ -350,7 +350,7 @@ class Inference:
         idx = self._index_rule(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         node.status = RULE
         if not exceptions:
-            self.turns.unsolve()     # the faces that glue this left side are gone
+            self.turns.rules_changed()     # the faces that glue this left side are gone
             if not starter:
                 self._forbid(g)
         self._drop_holders(idx, node.id)

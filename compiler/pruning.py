@@ -87,6 +87,9 @@ class TurnAnalysis:
         self.holds_left_side: Callable[[Graph], bool] | None = None
         self._solved = False
         self._faced = False     # no rule or ruled-out move since the faces were last read
+        self._w: np.ndarray | None = None    # the move graph's steps as of the last solve
+        self._solved_dead: set[int] = set()
+        self._solved_pairs: set[tuple[int, int]] = set()
 
     def unit_slots(self, g: Graph) -> list[tuple[int, int]] | None:
         """Each open slot of g as (unit, slot of that unit), or None if g's units are unknown."""
@@ -106,23 +109,34 @@ class TurnAnalysis:
     # --- the rule-reduced directed graph ---------------------------------------------------
 
     def forbid_unit(self, p: int) -> None:
-        self.dead.update(k for k, m in enumerate(self.moves) if m[0] == p or m[2] == p)
-        self.unsolve()
+        self._kill(k for k, m in enumerate(self.moves) if m[0] == p or m[2] == p)
 
     def forbid_edge(self, p: int, i: int, q: int, j: int) -> None:
-        for m in ((p, i, q, j), (q, j, p, i)):
-            if m in self.index:
-                self.dead.add(self.index[m])
-        self.unsolve()
+        self._kill(self.index[m] for m in ((p, i, q, j), (q, j, p, i)) if m in self.index)
 
     def forbid_pair(self, first: Move, second: Move) -> None:
         """No face walk makes move `second` right after `first`."""
         if first in self.index and second in self.index:
-            self.dead_pairs.add((self.index[first], self.index[second]))
+            pair = (self.index[first], self.index[second])
+            if pair not in self.dead_pairs:
+                self.dead_pairs.add(pair)
+                self.unsolve()
+
+    def _kill(self, moves) -> None:
+        # Walks are solved again only when a move really dies: most rules forbid what earlier
+        # ones did (the village re-solved 16 times of 23 for nothing).
+        new = set(moves) - self.dead
+        if new:
+            self.dead |= new
             self.unsolve()
 
     def unsolve(self) -> None:
+        """The live moves changed: walks and faces are read again."""
         self._solved = self._faced = False
+
+    def rules_changed(self) -> None:
+        """A new left side rules out faces; the walks stay as they are."""
+        self._faced = False
 
     def solve(self) -> None:
         if not self._solved:
@@ -144,7 +158,11 @@ class TurnAnalysis:
         return self._closing[e]
 
     def _solve(self) -> None:
-        self._solve_walks()
+        if self._w is None:
+            self._solve_walks()
+        else:
+            self._resolve_walks()
+        self._solved_dead, self._solved_pairs = set(self.dead), set(self.dead_pairs)
         self._solved = True
 
     def kill_by_faces(self) -> bool:
@@ -193,34 +211,46 @@ class TurnAnalysis:
             for b in self.leaving.get((q, (j + 1) % ring), ()):
                 if b not in self.dead and (a, b) not in self.dead_pairs:
                     w[a, b] = self.turns[a]
+        self._w = w
         # Moves that can follow each other both ways: the strong components of the move graph.
-        _, self.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
-                                            connection="strong")
-        self._ways: dict[tuple[Slot, Slot], Turns | None] = {}
-        self.low = self._by_component(w)                               # −inf: a negative cycle
-        self.high = -self._by_component(np.where(np.isfinite(w), -w, INF))  # +inf: positive
+        self.comp = _strong_components(w)
+        self.low, self.high = _component_bounds(w, self.comp)
         self._follow: list[list[int]] = [[] for _ in range(n)]
         for a, b in zip(*(x.tolist() for x in np.nonzero(np.isfinite(w)))):
             self._follow[a].append(b)
-        self.comp_of = self.comp.tolist()
-        self._closing: dict[int, tuple[list[float], list[float]]] = {}
+        self._read_components()
 
-    def _by_component(self, w: np.ndarray) -> np.ndarray:
-        """Shortest walks between moves of one strong component (the only ones `dead_end`
-        reads): a walk between two of its moves never leaves it, so each component is solved
-        on its own, in (size)³ instead of (all moves)³."""
-        d = np.full_like(w, INF)
-        # A move alone in its component walks nowhere or round its own loop: those at once.
-        alone = np.flatnonzero(np.bincount(self.comp)[self.comp] == 1)
-        loop = w[alone, alone]
-        d[alone, alone] = np.where(loop < 0, -INF, np.minimum(loop, 0))
-        order = np.argsort(self.comp, kind="stable")
-        cuts = np.flatnonzero(np.diff(self.comp[order])) + 1
-        for idx in np.split(order, cuts):
-            if len(idx) > 1:
-                block = np.ix_(idx, idx)
-                d[block] = _component_walks(w[block])
-        return d
+    def _resolve_walks(self) -> None:
+        """The last solve, updated for the moves and steps ruled out since: a component that
+        lost none keeps its walks (ruling out only splits components), so only those that
+        did are solved again. Each rule ruling out one step solved all 254 moves of the
+        village again."""
+        w, comp = self._w, self.comp
+        dead = self.dead - self._solved_dead
+        pairs = self.dead_pairs - self._solved_pairs
+        touched = {self.comp_of[m] for m in dead}
+        touched.update(self.comp_of[a] for a, b in pairs if self.comp_of[a] == self.comp_of[b])
+        rows = set(dead)
+        for m in dead:
+            rows.update(np.flatnonzero(np.isfinite(w[:, m])).tolist())     # steps onto m
+            w[m, :] = w[:, m] = INF
+        for a, b in pairs:
+            w[a, b] = INF
+            rows.add(a)
+        for a in rows:
+            self._follow[a] = np.flatnonzero(np.isfinite(w[a])).tolist()
+        idx = np.flatnonzero(np.isin(comp, list(touched)))
+        if len(idx):
+            block = np.ix_(idx, idx)
+            sub = _strong_components(w[block])
+            comp[idx] = sub + comp.max() + 1        # fresh labels: only equality is read
+            self.low[block], self.high[block] = _component_bounds(w[block], sub)
+        self._read_components()
+
+    def _read_components(self) -> None:
+        self.comp_of = self.comp.tolist()
+        self._ways: dict[tuple[Slot, Slot], Turns | None] = {}
+        self._closing: dict[int, tuple[list[float], list[float]]] = {}
 
     # --- the test ---------------------------------------------------------------------------
 
@@ -264,6 +294,36 @@ class TurnAnalysis:
                 hi = max(hi, turn + self.high[a, b])
                 any_way = True
         return (lo, hi) if any_way else None
+
+
+def _strong_components(w: np.ndarray) -> np.ndarray:
+    """Moves that can follow each other both ways (finite steps of w)."""
+    return connected_components(csr_matrix(np.isfinite(w)), directed=True,
+                                connection="strong")[1]
+
+
+def _component_bounds(w: np.ndarray, comp: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The least (−inf: a negative cycle) and the greatest (+inf: a positive one) turns of
+    walks between moves of one strong component."""
+    return _by_component(w, comp), -_by_component(np.where(np.isfinite(w), -w, INF), comp)
+
+
+def _by_component(w: np.ndarray, comp: np.ndarray) -> np.ndarray:
+    """Shortest walks between moves of one strong component (the only ones `dead_end`
+    reads): a walk between two of its moves never leaves it, so each component is solved
+    on its own, in (size)³ instead of (all moves)³."""
+    d = np.full_like(w, INF)
+    # A move alone in its component walks nowhere or round its own loop: those at once.
+    alone = np.flatnonzero(np.bincount(comp)[comp] == 1)
+    loop = w[alone, alone]
+    d[alone, alone] = np.where(loop < 0, -INF, np.minimum(loop, 0))
+    order = np.argsort(comp, kind="stable")
+    cuts = np.flatnonzero(np.diff(comp[order])) + 1
+    for idx in np.split(order, cuts):
+        if len(idx) > 1:
+            block = np.ix_(idx, idx)
+            d[block] = _component_walks(w[block])
+    return d
 
 
 def _component_walks(w: np.ndarray) -> np.ndarray:

@@ -114,15 +114,45 @@ def test_shortest_walks_per_component_equal_the_whole_graphs(n, data):
     import numpy as np
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import connected_components
-    from compiler.pruning import INF
+    from compiler.pruning import INF, _by_component
     cells = data.draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1),
                                          st.integers(-2, 2)), max_size=3 * n))
     w = np.full((n, n), INF)
     for a, b, t in cells:
         w[a, b] = t
-    ta = TurnAnalysis.__new__(TurnAnalysis)
-    _, ta.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
-                                      connection="strong")
-    whole, parts = _floyd_whole(w), ta._by_component(w)
-    same = ta.comp[:, None] == ta.comp[None, :]
+    _, comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
+                                   connection="strong")
+    whole, parts = _floyd_whole(w), _by_component(w, comp)
+    same = comp[:, None] == comp[None, :]
     assert np.array_equal(whole[same], parts[same])
+
+
+def _solved(ta: TurnAnalysis):
+    """What a solve leaves for readers: the partition into strong components, the walks'
+    bounds within each, the steps each move can take."""
+    import numpy as np
+    ta.solve()
+    same = ta.comp[:, None] == ta.comp[None, :]
+    return same, np.where(same, ta.low, 0), np.where(same, ta.high, 0), ta._follow
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(sorted(EXAMPLES)), st.data())
+def test_solving_again_after_kills_equals_solving_afresh(name, data):
+    # `_resolve_walks` solves only the components that lost a move or a step: its answer must
+    # be a fresh solve's, whatever dies, in any number of rounds.
+    import numpy as np
+    rings = [p.ring for p in EXAMPLES[name].primitives]
+    ta = TurnAnalysis(rings)
+    n = len(ta.moves)
+    ta.solve()
+    for _ in range(data.draw(st.integers(1, 4))):
+        for m in data.draw(st.lists(st.integers(0, n - 1), max_size=3)):
+            ta.forbid_edge(*ta.moves[m])
+        for a, b in data.draw(st.lists(st.tuples(st.integers(0, n - 1),
+                                                 st.integers(0, n - 1)), max_size=4)):
+            ta.forbid_pair(ta.moves[a], ta.moves[b])
+        fresh = TurnAnalysis(rings)
+        fresh.dead, fresh.dead_pairs = set(ta.dead), set(ta.dead_pairs)
+        for got, want in zip(_solved(ta), _solved(fresh)):
+            assert np.array_equal(np.asarray(got, dtype=object), np.asarray(want, dtype=object))
