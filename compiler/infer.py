@@ -131,7 +131,8 @@ class Inference:
         self.spent = 0        # graphs of the hierarchies started again from other blocks
         self.group = group
         self.carry = None     # what a regrouping passes on to the next turning analysis
-        self.own_extra: set = set()   # starters a framed example's components reduce to
+        self.own_extra: set = set()   # the example's components and `reached`
+        self.reached: set = set()     # starters a framed example's components reduce to
         self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None,
@@ -575,7 +576,8 @@ class Inference:
         on_border = set() if self.frame is None else \
             border_primitives(self.ex.primitives, border_labels(self.ex.labels, self.ex.classes))
         own = {canonical_key(g, self.ring_len) for g in graphs}
-        own |= self._reached_starters(graphs, own)
+        self.reached = self._reached_starters(graphs, own)
+        own |= self.reached
         self.own_extra = own
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
@@ -591,7 +593,10 @@ class Inference:
             # Past the time limit a component simply becomes a starter, which is always sound.
             deadline = float("inf") if self.limits.seconds is None \
                 else self.t0 + self.limits.seconds
-            if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS, deadline=deadline).reduces(g):
+            # Runs open with the example's own structures, not with a smaller starter they
+            # reduce to (`_reached_starters`): a starter for each, which builds nothing new.
+            if not self.reached and Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS,
+                                            deadline=deadline).reduces(g):
                 continue
             node, _ = self.hier.lookup_or_add(g, self.generation, None)
             self._add_rule(node, None)
@@ -627,6 +632,15 @@ class Inference:
                 out.add(key)
         return out
 
+    def _reached_unopened(self, rules: tuple[Rule, ...]) -> tuple[Rule, ...]:
+        """The reached starters with weight 0: they stay for reduction (`ggc verify`), but a
+        run opens with the example's own structures. Opening with the station's lone module,
+        whose only growing rule hangs a module under another, drew half the station."""
+        def key(r: Rule):
+            return canonical_key(side_graph(r.lhs), self.ring_len)
+        return tuple(replace(r, weight=0.0) if r.is_starter and key(r) in self.reached else r
+                     for r in rules)
+
     def _rules(self) -> tuple[Rule, ...]:
         return tuple(self.structural) + tuple(r.rule for r in self.state.rules)
 
@@ -647,6 +661,7 @@ class Inference:
         if self.frame is not None:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
             rules, dropped = frame_rules(rules, self.ex, own | self.own_extra)
+            rules = self._reached_unopened(rules)
             rules += frame_starters(self.ex, example_slots(self.ex))
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(
