@@ -69,6 +69,7 @@ class Report:
     remaining: int = 0
     remaining_boundaries: tuple[str, ...] = ()
     frame_rules_dropped: int = 0      # rules that would create, move or delete the frame
+    rules_beside: int = 0             # of `rules`, those grown beside a complete set
     # The same few remaining graphs, for drawing (`ggc report`); not part of the JSON summary.
     remaining_sides: tuple[Side, ...] = field(default=(), compare=False)
 
@@ -133,6 +134,9 @@ class Inference:
         self.carry = None     # what a regrouping passes on to the next turning analysis
         self.own_extra: set = set()   # the example's components and `reached`
         self.reached: set = set()     # starters a framed example's components reduce to
+        self.faces = True             # faces rule out moves and force blocks (faces.py)
+        self.left = None              # the blocks faces regrouped away from, and which group
+        self.beside: set[str] = set()     # names of the rules _grow_beside found
         self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None,
@@ -174,7 +178,38 @@ class Inference:
             if self.carry is not None:
                 self._carry_turns()
             self._grow()
+        self._grow_beside()
         return self._result()
+
+    def _grow_beside(self) -> None:
+        """When faces merged blocks and the grammar came out complete, the hierarchy they
+        regrouped away from is grown on, with the complete rules known and neither faces nor
+        regrouping, within the graphs the verdict left, and the rules it finds are kept. A
+        complete set builds each graph one way (the station's modules only hang from the one
+        above); these build the same graphs other ways (a module put above another), so runs
+        grow more. They leave the verdict alone: its hierarchy is put back, and so are its
+        limits."""
+        if self.left is None or self._limited():
+            return
+        verdict = (self.hier, self.frontier, self.generation, self.blocks, self.original,
+                   self.slots, self.matcher, self.turns, self.spent, set(self.limits_hit))
+        self.spent += len(self.hier.nodes)
+        self.faces = self.group = False
+        kept = len(self.state.rules)
+        self._start(*self.left, self.state.rules)
+        self._grow()
+        self.beside = {r.rule.name for r in self.state.rules[kept:]}
+        self.pending, self.faces, self.group = None, True, True
+        state = self.state
+        (self.hier, self.frontier, self.generation, self.blocks, self.original, self.slots,
+         self.matcher, self.turns, self.spent, limits_hit) = verdict
+        self.limits_hit.clear()
+        self.limits_hit.update(limits_hit)
+        self.state = state
+
+    def _limited(self) -> bool:
+        return bool(self.state.limits_hit) or \
+            any(self.hier.nodes[i].status == KEPT for i in self.frontier)
 
     def _interrupted(self) -> bool:
         return self.pending is not None or self._out_of_time() or self._too_many()
@@ -299,7 +334,7 @@ class Inference:
         then prune those still to be expanded that the faces the rules leave (faces.py) rule
         out."""
         self._recheck_rules()
-        if self.pending is not None or self._out_of_time():
+        if self.pending is not None or self._out_of_time() or not self.faces:
             return
         if not self.turns.kill_by_faces():
             return
@@ -368,10 +403,12 @@ class Inference:
         found so far pair slots off."""
         if self.pending is not None or not self.group:
             return
-        found = regroup(self.turns, self.blocks)
+        found = regroup(self.turns, self.blocks, self.faces)
         if found is None:
             return
-        parts, pairs = found
+        parts, pairs, by_faces = found
+        if by_faces and self.left is None:
+            self.left = (list(self.blocks), set(self.original))
         merged, place = grouping.merge([self.blocks[u] for u in parts], pairs,
                                        self.rings, self.loops)
         size = [0] * len(merged)
@@ -681,6 +718,7 @@ class Inference:
             remaining_boundaries=tuple(self.ex.format(n.graph.string(self.rings))
                                        for n in shown),
             frame_rules_dropped=dropped,
+            rules_beside=sum(1 for r in rules if r.name in self.beside),
             remaining_sides=tuple(n.graph.side() for n in shown),
         )
         return CompileResult(Grammar(header(self.ex, not limited, self.frame), rules), report)

@@ -28,10 +28,11 @@ from .pruning import TurnAnalysis
 Pair = tuple[int, Slot, int, Slot]      # part, its open slot, part, its open slot
 
 
-def regroup(turns: TurnAnalysis, blocks: Sequence[Graph]) -> tuple[list[int], list[Pair]] | None:
-    """The parts to merge (blocks, a block once per instance it is merged as) and the forced
-    pairs between them (by part), or None when nothing is forced: forced pairs of slots if
-    there are any, else forced faces."""
+def regroup(turns: TurnAnalysis, blocks: Sequence[Graph], faces: bool = True
+            ) -> tuple[list[int], list[Pair], bool] | None:
+    """The parts to merge (blocks, a block once per instance it is merged as), the forced
+    pairs between them (by part) and whether faces forced them, or None when nothing is
+    forced: forced pairs of slots if there are any, else (with `faces`) forced faces."""
     dead, dead_moves = _dead_blocks(turns), set(turns.dead)
     pairs = []
     for u, ring in enumerate(turns.rings):
@@ -47,9 +48,10 @@ def regroup(turns: TurnAnalysis, blocks: Sequence[Graph]) -> tuple[list[int], li
     live = [u for u in range(len(blocks)) if u not in dead]
     if pairs:
         at = {u: n for n, u in enumerate(live)}
-        return live, [(at[p], s, at[q], t) for p, s, q, t in pairs]
+        return live, [(at[p], s, at[q], t) for p, s, q, t in pairs], False
     # Dead blocks alone: the turning analysis knows them already.
-    return _forced_faces(turns, blocks, live)
+    found = _forced_faces(turns, blocks, live) if faces else None
+    return None if found is None else (*found, True)
 
 
 def _dead_blocks(turns: TurnAnalysis) -> set[int]:
