@@ -63,9 +63,14 @@ def iter_faces(turns: "TurnAnalysis", u: int, k: int, end: int | None = None):
         if home not in bounds:
             bounds[home] = [turns.closing(e) for e in ends if comp[e] == home]
         for b in reversed(turns.follow(last)):
-            if comp[b] != home or not any(
-                    lo[b] + total <= -1 <= hi[b] + total or lo[b] + total <= 1 <= hi[b] + total
-                    for lo, hi in bounds[home]):
+            if comp[b] != home:
+                continue
+            # (A loop, not any() over a generator: this is the search's inner test.)
+            for lo, hi in bounds[home]:
+                least, most = lo[b] + total, hi[b] + total
+                if least <= -1 <= most or least <= 1 <= most:
+                    break
+            else:
                 continue
             if len(walk) == FACE_MOVES:
                 yield None
