@@ -686,12 +686,12 @@ class Inference:
         self._example_starters()
         if self.hier.count(OVER):
             st.limits_hit.add("half-edges")
-        if not st.limits_hit and not any(self.hier.nodes[i].status == KEPT for i in self.frontier):
+        if not self._limited():
             self._self_check()
         front = {i for i in self.frontier if self.hier.nodes[i].status == KEPT}
         remaining = [n for n in self.hier.nodes
                      if n.status == OVER or (n.status == KEPT and n.id in front)]
-        limited = bool(st.limits_hit) or bool(front)
+        limited = self._limited()
         shown = sorted(remaining, key=lambda n: n.rank)[:5]
         rules = self._rules()
         dropped = 0
