@@ -34,6 +34,7 @@ from grammar_lang.rules import Grammar, Header, Rule
 from . import grouping
 from .regroup import regroup
 from .canon import canonical_key, split
+from .apply import side_graph
 from .framing import frame_rules, frame_starters, frame_with_start
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
@@ -68,6 +69,7 @@ class Report:
     remaining: int = 0
     remaining_boundaries: tuple[str, ...] = ()
     frame_rules_dropped: int = 0      # rules that would create, move or delete the frame
+    rules_beside: int = 0             # of `rules`, those grown beside a complete set
     # The same few remaining graphs, for drawing (`ggc report`); not part of the JSON summary.
     remaining_sides: tuple[Side, ...] = field(default=(), compare=False)
 
@@ -130,6 +132,11 @@ class Inference:
         self.spent = 0        # graphs of the hierarchies started again from other blocks
         self.group = group
         self.carry = None     # what a regrouping passes on to the next turning analysis
+        self.own_extra: set = set()   # the example's components and `reached`
+        self.reached: set = set()     # starters a framed example's components reduce to
+        self.faces = True             # faces rule out moves and force blocks (faces.py)
+        self.left = None              # the blocks faces regrouped away from, and which group
+        self.beside: set[str] = set()     # names of the rules _grow_beside found
         self._start(grouping.blocks(self.rings, enabled=group, loops=self.loops), original=None)
 
     def _start(self, blocks: list[Graph], original: set[int] | None,
@@ -143,6 +150,7 @@ class Inference:
         self.hier = Hierarchy(self.ring_len)
         self.matcher = Matcher(splice=self.splice)
         self.turns = TurnAnalysis(self.rings, self.blocks)
+        self.turns.holds_left_side = self._face_holds_left_side
         self.state = _State(limits_hit=self.limits_hit)
         for r in kept:
             self._index_rule(r)
@@ -170,7 +178,38 @@ class Inference:
             if self.carry is not None:
                 self._carry_turns()
             self._grow()
+        self._grow_beside()
         return self._result()
+
+    def _grow_beside(self) -> None:
+        """When faces merged blocks and the grammar came out complete, the hierarchy they
+        regrouped away from is grown on, with the complete rules known and neither faces nor
+        regrouping, within the graphs the verdict left, and the rules it finds are kept. A
+        complete set builds each graph one way (the station's modules only hang from the one
+        above); these build the same graphs other ways (a module put above another), so runs
+        grow more. They leave the verdict alone: its hierarchy is put back, and so are its
+        limits."""
+        if self.left is None or self._limited():
+            return
+        verdict = (self.hier, self.frontier, self.generation, self.blocks, self.original,
+                   self.slots, self.matcher, self.turns, self.spent, set(self.limits_hit))
+        self.spent += len(self.hier.nodes)
+        self.faces = self.group = False
+        kept = len(self.state.rules)
+        self._start(*self.left, self.state.rules)
+        self._grow()
+        self.beside = {r.rule.name for r in self.state.rules[kept:]}
+        self.pending, self.faces, self.group = None, True, True
+        state = self.state
+        (self.hier, self.frontier, self.generation, self.blocks, self.original, self.slots,
+         self.matcher, self.turns, self.spent, limits_hit) = verdict
+        self.limits_hit.clear()
+        self.limits_hit.update(limits_hit)
+        self.state = state
+
+    def _limited(self) -> bool:
+        return bool(self.state.limits_hit) or \
+            any(self.hier.nodes[i].status == KEPT for i in self.frontier)
 
     def _interrupted(self) -> bool:
         return self.pending is not None or self._out_of_time() or self._too_many()
@@ -284,8 +323,28 @@ class Inference:
                 return True
         return False
 
+    def _face_holds_left_side(self, g: Graph) -> bool:
+        """Whether a face's ring of units holds the left side of a rule that reduces every
+        graph holding it (one with no §5.4 exceptions; a starter's is a whole graph)."""
+        rules = [k for k, r in enumerate(self.state.rules) if not r.exceptions]
+        return self._holds_left_side(g, None, rules)
+
     def _recheck(self) -> None:
-        """Try every irreducible graph again as a left side against newer, simpler graphs."""
+        """Try every irreducible graph again as a left side against newer, simpler graphs;
+        then prune those still to be expanded that the faces the rules leave (faces.py) rule
+        out."""
+        self._recheck_rules()
+        if self.pending is not None or self._out_of_time() or not self.faces:
+            return
+        if not self.turns.kill_by_faces():
+            return
+        for nid in self.frontier:      # not yet expanded
+            node = self.hier.nodes[nid]
+            if node.status == KEPT and self.turns.dead_end(node.graph):
+                node.status = PRUNED
+                self.matcher.remove(node.id)
+
+    def _recheck_rules(self) -> None:
         for node in self.hier.kept():
             if node.status != KEPT or node.checked == self.matcher.version:
                 continue
@@ -326,8 +385,10 @@ class Inference:
                 return
         idx = self._index_rule(_Rule(g, Pattern.of(g), exceptions, rule, g.prim_counts))
         node.status = RULE
-        if not exceptions and not starter:
-            self._forbid(g)
+        if not exceptions:
+            self.turns.rules_changed()     # the faces that glue this left side are gone
+            if not starter:
+                self._forbid(g)
         self._drop_holders(idx, node.id)
 
     def _index_rule(self, r: _Rule) -> int:
@@ -342,13 +403,13 @@ class Inference:
         found so far pair slots off."""
         if self.pending is not None or not self.group:
             return
-        found = regroup(self.turns, self.blocks)
+        found = regroup(self.turns, self.blocks, self.faces)
         if found is None:
             return
-        live, pairs = found
-        at = {u: n for n, u in enumerate(live)}
-        merged, place = grouping.merge([self.blocks[u] for u in live],
-                                       [(at[p], s, at[q], t) for p, s, q, t in pairs],
+        parts, pairs, by_faces = found
+        if by_faces and self.left is None:
+            self.left = (list(self.blocks), set(self.original))
+        merged, place = grouping.merge([self.blocks[u] for u in parts], pairs,
                                        self.rings, self.loops)
         size = [0] * len(merged)
         for b, _ in place:
@@ -359,9 +420,11 @@ class Inference:
         order = sorted(range(len(merged)),
                        key=lambda b: (size[b] > 1, len(merged[b].verts) * (size[b] > 1), b))
         new_id = {b: n for n, b in enumerate(order)}
-        where = {u: (new_id[place[n][0]], place[n][1]) for n, u in enumerate(live)}
+        where: dict[int, list[tuple[int, int]]] = {}      # old block → (new block, first vertex)
+        for n, u in enumerate(parts):
+            where.setdefault(u, []).append((new_id[place[n][0]], place[n][1]))
         original = {new_id[b] for b in range(len(merged))
-                    if all(u in self.original for n, u in enumerate(live) if place[n][0] == b)}
+                    if all(u in self.original for n, u in enumerate(parts) if place[n][0] == b)}
         self.carry = (self.turns, self.blocks, where)
         self.pending = ([merged[b] for b in order], original, None)
 
@@ -372,28 +435,25 @@ class Inference:
         self.carry = None
         new = self.turns
 
-        def end(u: int, k: int) -> tuple[int, int] | None:
-            if u not in where:
-                return None
-            b, first = where[u]
-            v, i = old_blocks[u].gaps[k][0]
-            kk = new.slot_of[b].get((first + v, i))
-            return None if kk is None else (b, kk)
+        def ends(u: int, k: int) -> list[tuple[int, int]]:
+            out = []
+            for b, first in where.get(u, ()):
+                v, i = old_blocks[u].gaps[k][0]
+                kk = new.slot_of[b].get((first + v, i))
+                if kk is not None:
+                    out.append((b, kk))
+            return out
 
-        def move(m: int) -> int | None:
+        def moves(m: int) -> list[int]:
             p, i, q, j = old.moves[m]
-            a, c = end(p, i), end(q, j)
-            return None if a is None or c is None else new.index.get((*a, *c))
+            return [new.index[(*a, *c)] for a in ends(p, i) for c in ends(q, j)
+                    if (*a, *c) in new.index]
 
         for m in old.dead:
-            n = move(m)
-            if n is not None:
-                new.dead.add(n)
+            new.dead.update(moves(m))
         for m1, m2 in old.dead_pairs:
-            n1, n2 = move(m1), move(m2)
-            if n1 is not None and n2 is not None:
-                new.dead_pairs.add((n1, n2))
-        new._solved = False
+            new.dead_pairs.update((n1, n2) for n1 in moves(m1) for n2 in moves(m2))
+        new.unsolve()
 
     def _forbid(self, g: Graph) -> None:
         """Tell the turning analysis what an irreducible graph can no longer hold: a left side
@@ -553,6 +613,9 @@ class Inference:
         on_border = set() if self.frame is None else \
             border_primitives(self.ex.primitives, border_labels(self.ex.labels, self.ex.classes))
         own = {canonical_key(g, self.ring_len) for g in graphs}
+        self.reached = self._reached_starters(graphs, own)
+        own |= self.reached
+        self.own_extra = own
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
@@ -567,10 +630,53 @@ class Inference:
             # Past the time limit a component simply becomes a starter, which is always sound.
             deadline = float("inf") if self.limits.seconds is None \
                 else self.t0 + self.limits.seconds
-            if Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS, deadline=deadline).reduces(g):
+            # Runs open with the example's own structures, not with a smaller starter they
+            # reduce to (`_reached_starters`): a starter for each, which builds nothing new.
+            if not self.reached and Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS,
+                                            deadline=deadline).reduces(g):
                 continue
             node, _ = self.hier.lookup_or_add(g, self.generation, None)
             self._add_rule(node, None)
+
+    def _reached_starters(self, graphs: list[Graph], own: set) -> set:
+        """In a frame, the starters framing would drop that an example component of a
+        connected example reduces to: kept, they build nothing that the example's own starter
+        would not (every rule keeps a connected graph connected, so the component reduces to
+        that one graph, and back), and `ggc verify` finds that graph reducible. A lone module
+        of the space station is one."""
+        if self.frame is None or not self.ex.options.connected:
+            return set()
+        from .verify import Reducer
+
+        def reduces(rules: tuple[Rule, ...], g: Graph) -> bool:
+            grammar = Grammar(header(self.ex, False), rules)
+            return Reducer(grammar, apply_budget=EXAMPLE_CHECK_STEPS).reduces(g)
+
+        kept, _ = frame_rules(self._rules(), self.ex, own)
+        border = border_primitives(self.ex.primitives,
+                                   border_labels(self.ex.labels, self.ex.classes))
+        # Components that hold the frame reduce to it whatever the starters; those that
+        # reduce without a dropped starter do not show that they reach it.
+        free = [g for g in graphs if not border.intersection(g.verts) and not reduces(kept, g)]
+        out = set()
+        for r in self._rules():
+            if not r.is_starter or r in kept:
+                continue
+            key = canonical_key(side_graph(r.lhs), self.ring_len)
+            if not frame_rules((r,), self.ex, {key})[0]:
+                continue      # dropped for holding the frame, not for being no example part
+            if any(reduces(kept + (r,), g) for g in free):
+                out.add(key)
+        return out
+
+    def _reached_unopened(self, rules: tuple[Rule, ...]) -> tuple[Rule, ...]:
+        """The reached starters with weight 0: they stay for reduction (`ggc verify`), but a
+        run opens with the example's own structures. Opening with the station's lone module,
+        whose only growing rule hangs a module under another, drew half the station."""
+        def key(r: Rule):
+            return canonical_key(side_graph(r.lhs), self.ring_len)
+        return tuple(replace(r, weight=0.0) if r.is_starter and key(r) in self.reached else r
+                     for r in rules)
 
     def _rules(self) -> tuple[Rule, ...]:
         return tuple(self.structural) + tuple(r.rule for r in self.state.rules)
@@ -580,18 +686,19 @@ class Inference:
         self._example_starters()
         if self.hier.count(OVER):
             st.limits_hit.add("half-edges")
-        if not st.limits_hit and not any(self.hier.nodes[i].status == KEPT for i in self.frontier):
+        if not self._limited():
             self._self_check()
         front = {i for i in self.frontier if self.hier.nodes[i].status == KEPT}
         remaining = [n for n in self.hier.nodes
                      if n.status == OVER or (n.status == KEPT and n.id in front)]
-        limited = bool(st.limits_hit) or bool(front)
+        limited = self._limited()
         shown = sorted(remaining, key=lambda n: n.rank)[:5]
         rules = self._rules()
         dropped = 0
         if self.frame is not None:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
-            rules, dropped = frame_rules(rules, self.ex, own)
+            rules, dropped = frame_rules(rules, self.ex, own | self.own_extra)
+            rules = self._reached_unopened(rules)
             rules += frame_starters(self.ex, example_slots(self.ex))
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(
@@ -611,6 +718,7 @@ class Inference:
             remaining_boundaries=tuple(self.ex.format(n.graph.string(self.rings))
                                        for n in shown),
             frame_rules_dropped=dropped,
+            rules_beside=sum(1 for r in rules if r.name in self.beside),
             remaining_sides=tuple(n.graph.side() for n in shown),
         )
         return CompileResult(Grammar(header(self.ex, not limited, self.frame), rules), report)

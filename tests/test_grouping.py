@@ -67,3 +67,39 @@ def test_the_papers_flowers_are_complete_with_rigid_units():
     res = compile_example(load_example(ILLUSTRATIONS / "flowers.gg"))
     assert res.report.complete, res.report.verdict
     assert res.report.hierarchy_graphs < 200
+
+
+def test_the_papers_station_is_complete_with_its_modules_as_units():
+    # Table 1: the station is complete (25 rules, 240 hierarchy graphs). The closed top and the
+    # connector each close a face with the module body below them and only that one, so they
+    # become two units; a module's bottom line shut on itself is a left side (the leaf module,
+    # or the lone module's starter), so no face can walk back up from a connector.
+    from compiler.verify import verify
+    res = compile_example(load_example(ILLUSTRATIONS / "space-station.gg"))
+    assert res.report.complete, res.report.verdict
+    assert res.report.blocks == 3 and res.report.hierarchy_graphs < 240
+    assert res.report.rules - res.report.rules_beside + res.report.starters <= 25
+    # The hierarchy the faces left, grown on beside the complete rules, adds ways to grow
+    # (a module above another) without touching the verdict.
+    assert res.report.rules_beside > 0
+    # The lone module is a starter (its example component reduces to it), so it reduces too.
+    assert verify(res.grammar, 8).ok
+
+
+def test_the_station_opens_with_its_example_not_the_lone_module():
+    # The lone module stays for reduction with weight 0; runs open with the example's station,
+    # which its one growing rule (a module hung under another) could not grow from one module.
+    from compiler.apply import side_graph
+    from compiler.canon import canonical_key
+    from compiler.infer import example_graphs
+    from runtime.engine.schedule import Schedule
+    ex = load_example(ILLUSTRATIONS / "space-station.gg")
+    res = compile_example(ex)
+    ring_len = [len(p.ring) for p in ex.primitives]
+    own = {canonical_key(g, ring_len) for g in example_graphs(ex)}
+    starters = [r for r in res.grammar.rules if r.is_starter]
+    assert {canonical_key(side_graph(r.lhs), ring_len) in own for r in starters} == {True, False}
+    for r in starters:
+        assert (r.weight > 0) == (canonical_key(side_graph(r.lhs), ring_len) in own)
+    opening = Schedule.build(res.grammar).opening
+    assert [m.rule.name for m, _ in opening] == [r.name for r in starters if r.weight > 0]

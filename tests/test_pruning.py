@@ -65,6 +65,20 @@ def test_dead_ends_have_no_complete_descendants(name, choices):
             assert not _has_complete_descendant(g, prims, rings, slots, extra=4)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(sorted(EXAMPLES)), st.lists(st.integers(0, 10_000), min_size=2, max_size=10))
+def test_moves_on_no_face_are_on_no_complete_graph(name, choices):
+    # Without rules, kill_by_faces kills only moves that lie on no face turning ±1: a graph
+    # that glues one of them still has no complete descendant.
+    rings = [p.ring for p in EXAMPLES[name].primitives]
+    analysis = TurnAnalysis(rings)
+    analysis.kill_by_faces()
+    graphs, prims, slots = _grow(rings, choices)
+    for g in graphs:
+        if not g.is_complete and analysis.dead_end(g):
+            assert not _has_complete_descendant(g, prims, rings, slots, extra=4)
+
+
 def test_the_square_closes_and_its_spirals_are_dead_ends():
     ex = EXAMPLES["square-filled"]
     rings = [p.ring for p in ex.primitives]
@@ -100,15 +114,45 @@ def test_shortest_walks_per_component_equal_the_whole_graphs(n, data):
     import numpy as np
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import connected_components
-    from compiler.pruning import INF
+    from compiler.pruning import INF, _by_component
     cells = data.draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1),
                                          st.integers(-2, 2)), max_size=3 * n))
     w = np.full((n, n), INF)
     for a, b, t in cells:
         w[a, b] = t
-    ta = TurnAnalysis.__new__(TurnAnalysis)
-    _, ta.comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
-                                      connection="strong")
-    whole, parts = _floyd_whole(w), ta._by_component(w)
-    same = ta.comp[:, None] == ta.comp[None, :]
+    _, comp = connected_components(csr_matrix(np.isfinite(w)), directed=True,
+                                   connection="strong")
+    whole, parts = _floyd_whole(w), _by_component(w, comp)
+    same = comp[:, None] == comp[None, :]
     assert np.array_equal(whole[same], parts[same])
+
+
+def _solved(ta: TurnAnalysis):
+    """What a solve leaves for readers: the partition into strong components, the walks'
+    bounds within each, the steps each move can take."""
+    import numpy as np
+    ta.solve()
+    same = ta.comp[:, None] == ta.comp[None, :]
+    return same, np.where(same, ta.low, 0), np.where(same, ta.high, 0), ta._follow
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(sorted(EXAMPLES)), st.data())
+def test_solving_again_after_kills_equals_solving_afresh(name, data):
+    # `_resolve_walks` solves only the components that lost a move or a step: its answer must
+    # be a fresh solve's, whatever dies, in any number of rounds.
+    import numpy as np
+    rings = [p.ring for p in EXAMPLES[name].primitives]
+    ta = TurnAnalysis(rings)
+    n = len(ta.moves)
+    ta.solve()
+    for _ in range(data.draw(st.integers(1, 4))):
+        for m in data.draw(st.lists(st.integers(0, n - 1), max_size=3)):
+            ta.forbid_edge(*ta.moves[m])
+        for a, b in data.draw(st.lists(st.tuples(st.integers(0, n - 1),
+                                                 st.integers(0, n - 1)), max_size=4)):
+            ta.forbid_pair(ta.moves[a], ta.moves[b])
+        fresh = TurnAnalysis(rings)
+        fresh.dead, fresh.dead_pairs = set(ta.dead), set(ta.dead_pairs)
+        for got, want in zip(_solved(ta), _solved(fresh)):
+            assert np.array_equal(np.asarray(got, dtype=object), np.asarray(want, dtype=object))

@@ -72,6 +72,11 @@ _LOW, _HIGH = 1.0 - SPREAD, 1.0 + SPREAD
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
 CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
+# How far a length may miss its class's range (numerical noise): a ten-millionth of the unit,
+# but never more than the verifier's 2e-6 leaves once a drawing's coordinates are rounded to
+# 6 decimals (each end moves up to 0.71e-6). At 1e-7 of a 40 px unit (4e-6) a kept edge at
+# its floor came out 2.1e-6 short, and the drawing failed its check.
+LENGTH_NOISE = 5e-7
 
 
 @dataclass(frozen=True)
@@ -106,6 +111,7 @@ class Solver:
         self.last_failure = ""
         self.culprits: dict[tuple[int, int], int] = {}
         self._label_bounds: dict[int, tuple] = {}       # see _bounds_of
+        self.tol = min(1e-7 * host.t.unit, LENGTH_NOISE)
         self.unique = False
         # New edges between two old vertices (a wire replaced): constraints from the start.
         self.bridges = [(a, b) for a, b in change.glue
@@ -341,7 +347,7 @@ class Solver:
     def _fixed_out(self, edges, fact: "Factor", c: list) -> bool:
         """Whether a length the system fixes whatever the target (its row of x = R t + c is
         constant) lies outside its class's range: then every sample fails."""
-        tol = 1e-7 * self.host.t.unit
+        tol = self.tol
         for e in fact.fixed_idx:
             lt, ht = self._bounds(edges[e][-1], self._known(*edges[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
@@ -354,7 +360,7 @@ class Solver:
         ranges over a box (positions within 3σ of their centre, lengths within their draw
         range): when a length's range over that box misses its class, no sample can pass
         (`c`: the lengths at a zero target)."""
-        tol = 1e-7 * self.host.t.unit
+        tol = self.tol
         mid, half = self._target_box(rd)
         centre = fact.R.dot(mid).tolist()
         spread = fact.absR.dot(half).tolist()
@@ -457,13 +463,13 @@ class Solver:
         # A kept edge is held to the floor only as far as it already reaches it: with new
         # lengths stiff (DRAWN_LENGTH) the projection shortens old edges more, and unchecked
         # it squeezed the castle's old towers into slivers.
-        return max(floor, min(least, kn) - 1e-7 * self.host.t.unit), ht
+        return max(floor, min(least, kn) - self.tol), ht
 
     def _bounds_of(self, lab: int) -> tuple[float, float, float, float | None]:
         """A label's part of _bounds (asked for every edge of every round): a drawn edge's
         bounds, the class's minimum widened, and the floor (None: none)."""
         t = self.host.t
-        tol = 1e-7 * t.unit
+        tol = self.tol
         l, h = t.lengths[lab][:2]
         if lab in self.host.side_labels or not t.least:
             return l - tol, h + tol, l - tol, None
@@ -496,7 +502,7 @@ class Solver:
                 self._fail(Rejection.TILES)
                 return None
         xs = x.tolist()
-        tol = 1e-7 * t.unit
+        tol = self.tol
         lengths = xs[2 * nF:]
         if self.strict:
             ok = all(s > tol and lt <= s <= ht for s, lt, ht in zip(lengths, rd.lo_tol, rd.hi_tol))
