@@ -501,17 +501,14 @@ class Solver:
         xs = x.tolist()
         tol = 1e-7 * t.unit
         lengths = xs[2 * nF:]
-        if self.strict:
-            ok = all(s > tol and lt <= s <= ht for s, lt, ht in zip(lengths, rd.lo_tol, rd.hi_tol))
-        else:
-            ok = all(s > tol for s in lengths)
-        if not ok:
+        # One pass: the first length out of its class is the one blamed (not strict, only
+        # when some length is not positive).
+        if self.strict or not all(s > tol for s in lengths):
             for e, (s, lt, ht) in enumerate(zip(lengths, rd.lo_tol, rd.hi_tol)):
                 if not (s > tol and lt <= s <= ht):
                     self._blame(rd.edges[e])
-                    break
-            self._fail(Rejection.EDGE_LENGTH)
-            return None
+                    self._fail(Rejection.EDGE_LENGTH)
+                    return None
         pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
@@ -594,10 +591,9 @@ class Solver:
         boxes, link = grid.boxes, self.host.link
         for v, w, a, c, lx, ly, hx, hy in segs:
             for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
-                if key in ignore:
-                    continue
+                # The box first: most candidates are far, and the order of skips is free.
                 qlx, qly, qhx, qhy, p, q = boxes[key]
-                if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy:
+                if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy or key in ignore:
                     continue
                 x = key[0]
                 y = link[x][key[1]][0]
