@@ -426,4 +426,8 @@ class Engine:
             todo.update(host.grid.points_near(min(xs) - pad, min(ys) - pad,
                                               max(xs) + pad, max(ys) + pad, False))
         # Each vertex's test is independent of the others: the order does not matter.
-        return all(host.face_ok(v) for v in todo if v in host.prim)
+        prim = host.prim
+        for v in todo:
+            if v in prim and not host.face_ok(v):
+                return False
+        return True

@@ -276,7 +276,8 @@ class Grid:
         c = self.seg
         col0 = math.floor(px / c)
         top = py + tol
-        rows = sorted({math.floor((py - tol) / c), math.floor(top / c)})
+        r0, r1 = math.floor((py - tol) / c), math.floor(top / c)     # their order is free
+        rows = (r0,) if r0 == r1 else (r0, r1)
         b = self.bounds()
         if b is None:
             return None
