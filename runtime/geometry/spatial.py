@@ -270,7 +270,7 @@ class Grid:
         above it (above p.y + tol), which makes the ray miss segments that merely end at p or
         that leave a level vertex downwards. Segments leaving one level vertex upwards all
         meet the ray at that vertex; the one leaning furthest right is hit first, as it would
-        be just above p.y. Returns (id, x of the hit).
+        be just above p.y. The hit is kept within the segment's box. Returns (id, x of the hit).
         """
         px, py = p
         c = self.seg
@@ -302,19 +302,24 @@ class Grid:
                         ax, ay, bx, by = bx, by, ax, ay
                     lean = (bx - ax) / (by - ay)     # x gained per unit of height
                     x = ax if ay >= py - tol else ax + (py - ay) * lean
+                    # The exact hit lies in the segment's box; rounding can put the computed
+                    # one just outside, past the column where the stop test below expects it.
+                    x = lx if x < lx else hx if x > hx else x
                     if x >= px:
                         continue
                     key = (x, lean)
                     if best is None or key > best[:2] or (key == best[:2] and sid < best[2]):
                         best = (x, lean, sid)
-            if best is not None and best[0] >= col * c:
+            # Compared as the cells were filed (x / c), so that a segment filed only left of
+            # `col` cannot hold a hit right of this one.
+            if best is not None and best[0] / c >= col:
                 break
             # Jump to the next column with a segment: the cells skipped are empty, and the
             # stop test above would have held at the last of them if it holds anywhere there.
             nxt = self._next_column(col, rows)
             if nxt is None:
                 break
-            if nxt < col - 1 and best is not None and best[0] >= (nxt + 1) * c:
+            if nxt < col - 1 and best is not None and best[0] / c >= nxt + 1:
                 break
             col = nxt
         return None if best is None else (best[2], best[0])
