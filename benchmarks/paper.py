@@ -96,7 +96,7 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
     if host.frame is not None and len(inner) >= 3:
         w, h = host.frame.size
         covered = shapely.MultiPoint(inner).convex_hull.area / (w * h)
-    faces = {f for prim in range(len(host.t.rings)) if host.prim_count[prim]
+    faces = {f for prim in range(len(host.t.rings)) if host.by_prim[prim]
              for f in host.t.left[prim] + host.t.right[prim]}
     wanted = set(example.face_labels) - {example.exterior}
     drawn = {host.t.label_class[host.t.label[host.prim[v]][i]] for v, i, _, _ in host.edges()}

@@ -4,7 +4,7 @@ random drawings, with segments and points added, moved and removed."""
 
 from __future__ import annotations
 
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from runtime.geometry.spatial import Grid
@@ -15,8 +15,8 @@ point = st.tuples(coord, coord)
 
 
 def ray_reference(segs: dict, p, skip=(), tol=0.0):
-    """The documented rule over every segment: the hit furthest right of those left of p, ties
-    by the lean, then by the smaller id."""
+    """The documented rule over every segment: the hit (within the segment's box) furthest
+    right of those left of p, ties by the lean, then by the smaller id."""
     px, py = p
     top = py + tol
     best = None
@@ -27,6 +27,7 @@ def ray_reference(segs: dict, p, skip=(), tol=0.0):
             ax, ay, bx, by = bx, by, ax, ay
         lean = (bx - ax) / (by - ay)
         x = ax if ay >= py - tol else ax + (py - ay) * lean
+        x = min(max(x, min(ax, bx)), max(ax, bx))         # within the segment's box
         if x >= px:
             continue
         if best is None or (x, lean) > best[:2] or ((x, lean) == best[:2] and sid < best[2]):
@@ -53,6 +54,11 @@ def build(cell, pieces, removed, seg=None):
        pieces=st.lists(st.tuples(point, point).filter(lambda s: s[0] != s[1]), max_size=25),
        removed=st.sets(st.integers(0, 24)), rays=st.lists(point, min_size=1, max_size=6),
        tol=st.sampled_from([0.0, 1e-7]))
+# A hit computed right of its segment's box (x = 0.0, a column's edge, for a segment ending at
+# -2e-240): unclamped, it beat the hit that ended the walk at that column.
+@example(cell=0.5, seg=None, removed=set(), rays=[(1.0, 0.0)], tol=0.0,
+         pieces=[((0.0, 0.0), (0.0, 1.0)),
+                 ((-1.0, -1.0), (-2.1194722933806824e-240, 2.0725227544860056e-129))])
 def test_ray_left_finds_what_brute_force_finds(cell, seg, pieces, removed, rays, tol):
     """Segment cells of their own size (smaller or larger than the point cells) too."""
     g, segs = build(cell, pieces, removed, seg)

@@ -77,22 +77,27 @@ class FaceWalk:
     def __init__(self, link, pos, corner: tuple[int, int], limit: int,
                  until: tuple[int, int] | None = None):
         self.start, self._pos = corner, pos
-        walk, v, i = [], *corner
+        walk, c = [], corner
         self.closed = False
+        # The slots of `link` are corners already: each step appends one, building no tuple.
         for _ in range(limit):
-            walk.append((v, i))
-            if (v, i) == until:
+            walk.append(c)
+            if c == until:
                 break
-            s = link[v][(i + 1) % len(link[v])]
-            if s is None:
+            ring = link[c[0]]
+            c = ring[(c[1] + 1) % len(ring)]
+            if c is None:
                 break
-            v, i = s
-            if (v, i) == corner:
+            if c == corner:
                 self.closed = True
                 break
         self.corners = walk
         self.at = set(walk)
-        self.vertices = {v for v, _ in walk}
+
+    @functools.cached_property
+    def vertices(self) -> set:
+        """The walk's vertices: made when asked (most walks are decided by their corners)."""
+        return {v for v, _ in self.corners}
 
     @functools.cached_property
     def encloses(self) -> bool:

@@ -10,8 +10,10 @@ be undone and redone. The REPL drives the same engine one operation at a time (`
 
 from __future__ import annotations
 
+import gc
 import math
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -76,6 +78,26 @@ class Summary:
 
 
 OPENING_TRIES = 50      # proposals for a connected grammar's one starter before giving up
+# While run() holds the automatic garbage collection off, it collects the young generations
+# itself after this many proposals.
+COLLECT_EVERY = 1000
+
+
+@contextmanager
+def _collector_paused():
+    """Automatic garbage collection off for a run, and back as the caller had it after;
+    yields whether the caller had it on (then run() collects the young generations itself,
+    every COLLECT_EVERY proposals). A step makes no reference cycles (1,000 steps of
+    h-complex at 20,000 vertices left none for the collector), but the new parts of the
+    drawing it keeps were walked by the young collections and then by full ones over the
+    whole drawing: 0.7-1.9 s of the 9-11 s that growing h-complex to 20,000 vertices took."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield enabled
+    finally:
+        if enabled:
+            gc.enable()
 
 
 class Engine:
@@ -296,6 +318,10 @@ class Engine:
         `stop()` says so (it is asked between steps, so the drawing is always whole), or,
         without `iterations`, on a stall: with them the work is bounded already, and the
         paper's walk goes on proposing however many fail."""
+        with _collector_paused() as collect:
+            return self._run(steps, progress, every, stop, iterations, collect)
+
+    def _run(self, steps, progress, every, stop, iterations, collect: bool) -> Summary:
         s = Summary()
         t0 = time.perf_counter()
         stall = 0
@@ -316,6 +342,8 @@ class Engine:
                           "no rule applies (the drawing is terminal)")
                 break
             s.proposals += 1
+            if collect and s.proposals % COLLECT_EVERY == 0:
+                gc.collect(1)
             if out.applied is not None:
                 s.applied += 1
                 stall = 0
@@ -398,4 +426,8 @@ class Engine:
             todo.update(host.grid.points_near(min(xs) - pad, min(ys) - pad,
                                               max(xs) + pad, max(ys) + pad, False))
         # Each vertex's test is independent of the others: the order does not matter.
-        return all(host.face_ok(v) for v in todo if v in host.prim)
+        prim = host.prim
+        for v in todo:
+            if v in prim and not host.face_ok(v):
+                return False
+        return True

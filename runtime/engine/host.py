@@ -13,8 +13,6 @@ Fresh ids come from a counter and are never reused.
 
 from __future__ import annotations
 
-import numpy as np
-
 from grammar_lang.algorithms.components import glued_components
 from grammar_lang.graph import Slot
 from grammar_lang.rules import Header
@@ -50,7 +48,9 @@ class Host:
         self.pos: dict[int, Point] = {}
         self.link: dict[int, list[Slot | None]] = {}
         self.by_prim: list[list[int]] = [[] for _ in self.t.rings]
-        self.prim_count = np.zeros(len(self.t.rings), dtype=np.int64)   # len(by_prim[p])
+        # The primitives with no vertex, sorted: the schedule's key for the moves they block.
+        # Changed only when a primitive's first vertex comes or its last goes.
+        self.absent: tuple[int, ...] = tuple(range(len(self.t.rings)))
         self._where: dict[int, int] = {}
         self.next_id = 0
         cell = grid_cell(self.t)
@@ -100,7 +100,8 @@ class Host:
         lst = self.by_prim[prim]
         self._where[v] = len(lst)
         lst.append(v)
-        self.prim_count[prim] += 1
+        if len(lst) == 1:
+            self.absent = tuple(p for p in self.absent if p != prim)
         self.grid.add_point(v, p, prim)
         self.n_open += len(self.link[v])
         self.next_id = max(self.next_id, v + 1)
@@ -111,12 +112,13 @@ class Host:
         prim, p = self.prim.pop(v), self.pos.pop(v)
         self.n_open -= len(self.link.pop(v))
         lst = self.by_prim[prim]
-        self.prim_count[prim] -= 1
         k = self._where.pop(v)
         last = lst.pop()
         if last != v:
             lst[k] = last
             self._where[last] = k
+        if not lst:
+            self.absent = tuple(sorted((*self.absent, prim)))
         self.grid.remove_point(v)
         self._log(("remove", v, prim, p))
 
@@ -260,8 +262,8 @@ class Host:
                 errs.append(f"vertex {v} misfiled in the primitive index")
         if sum(len(l) for l in self.by_prim) != len(self.prim):
             errs.append("primitive index holds stale vertices")
-        if [len(l) for l in self.by_prim] != self.prim_count.tolist():
-            errs.append("primitive counts disagree with the primitive index")
+        if self.absent != tuple(p for p, l in enumerate(self.by_prim) if not l):
+            errs.append("absent primitives disagree with the primitive index")
         if n_open != self.n_open or n_edges != self.n_edges or counts != self.label_count:
             errs.append("edge or open-slot counts disagree with a recount")
         return errs

@@ -52,14 +52,14 @@ class Level:
     def _allowed(self) -> dict:
         return {}
 
-    def allowed(self, absent: np.ndarray) -> list[int]:
+    def allowed(self, absent: tuple[int, ...]) -> list[int]:
         """The moves whose pattern needs no primitive of `absent` (host primitives with no
-        vertex), in move order; kept per set of absent primitives, which rarely changes."""
-        key = absent.tobytes()
-        ks = self._allowed.get(key)
+        vertex, Host.absent), in move order; kept per set of absent primitives, which rarely
+        changes."""
+        ks = self._allowed.get(absent)
         if ks is None:
-            blocked = self.requires[:, absent].any(axis=1).tolist()
-            ks = self._allowed[key] = [k for k in range(len(self.moves)) if not blocked[k]]
+            blocked = self.requires[:, list(absent)].any(axis=1).tolist()
+            ks = self._allowed[absent] = [k for k in range(len(self.moves)) if not blocked[k]]
         return ks
 
 
@@ -164,7 +164,7 @@ class Schedule:
         # Sorted in Python: a level holds a few dozen moves, and Python's sort is stable as
         # numpy's "stable" argsort of -keys is, so ties keep the move order either way.
         keys = (rng.random(len(level.weights)) ** level.inverse_weights).tolist()
-        return sorted(level.allowed(host.prim_count == 0), key=keys.__getitem__, reverse=True)
+        return sorted(level.allowed(host.absent), key=keys.__getitem__, reverse=True)
 
     def _draw(self, level: Level, ks: list[int], host: Host, rng: np.random.Generator,
               probes: int | None):

@@ -315,14 +315,15 @@ class Solver:
         no sample of it can pass."""
         host, t = self.host, self.host.t
         edges = self._edges(free)
+        kept = self._kept(edges)
         idx = {v: k for k, v in enumerate(free)}
-        shape = (tuple(OLD if v in host.prim else GLUED if v in self.glued else LOOSE
-                       for v in free),
-                 tuple((idx.get(v, -1), idx.get(w, -1), d,
-                        t.lengths[lab][2] if self.strict else None,
-                        lab in host.side_labels,
-                        not self._kept(v, i, w, j))
-                       for v, i, w, j, d, lab in edges))
+        prim, glued, sides = host.prim, self.glued, host.side_labels
+        lengths = t.lengths if self.strict else None
+        # Built from lists: tuple() of a list is cheaper than of a generator.
+        shape = (tuple([OLD if v in prim else GLUED if v in glued else LOOSE for v in free]),
+                 tuple([(idx.get(v, -1), idx.get(w, -1), d,
+                         None if lengths is None else lengths[lab][2], lab in sides, not k)
+                        for (v, _, w, _, d, lab), k in zip(edges, kept)]))
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
@@ -337,19 +338,19 @@ class Solver:
         # A system with one solution gives the same sample every time: one try is enough.
         self.unique = fact.unique
         if not self.strict:
-            return self._round(free, edges, fact, b)
+            return self._round(free, edges, kept, fact, b)
         # Half the castle's rounds fail here: tested before the round's constants are made.
         c = (fact.scale_len * fact.Mp_len.dot(b)).tolist()
-        if self._fixed_out(edges, fact, c):
+        if self._fixed_out(edges, kept, fact, c):
             return Rejection.LENGTH_FIXED
-        return self._doomed(self._round(free, edges, fact, b), fact, c)
+        return self._doomed(self._round(free, edges, kept, fact, b), fact, c)
 
-    def _fixed_out(self, edges, fact: "Factor", c: list) -> bool:
+    def _fixed_out(self, edges, kept, fact: "Factor", c: list) -> bool:
         """Whether a length the system fixes whatever the target (its row of x = R t + c is
         constant) lies outside its class's range: then every sample fails."""
         tol = self.tol
         for e in fact.fixed_idx:
-            lt, ht = self._bounds(edges[e][-1], self._known(*edges[e]))
+            lt, ht = self._bounds(edges[e][-1], self._known(edges[e], kept[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
                 self._blame(edges[e])
                 return True
@@ -396,7 +397,7 @@ class Solver:
         ty = typical[lab] if typical and lab not in self.host.side_labels else math.nan
         return self.stretch * ty if ty == ty else self.scale
 
-    def _round(self, free, edges, fact: "Factor", b: np.ndarray) -> "_Round":
+    def _round(self, free, edges, kept, fact: "Factor", b: np.ndarray) -> "_Round":
         """What stays the same for every sample of a round. Plain lists: they hold a few
         dozen numbers, where a numpy call costs more than the loop."""
         host, t = self.host, self.host.t
@@ -418,7 +419,7 @@ class Solver:
             l, h, fixed, tile = t.lengths[lab]
             lo.append(l)
             hi.append(h)
-            kn = self._known(*edge)
+            kn = self._known(edge, kept[e])
             known.append(kn)
             if kn != kn:
                 drawn.append(e)
@@ -431,19 +432,21 @@ class Solver:
         return _Round(edges, fact, b, base, moving, aimless, known, drawn, lo, hi, centre,
                       tiles, tuple(e for e, _ in tiles), lo_tol, hi_tol)
 
-    def _kept(self, v, i, w, j) -> bool:
-        """Whether slot (v, i) to (w, j) is an edge the host has now (not one to draw)."""
-        host = self.host
-        return v in host.prim and host.link[v][i] == (w, j)
+    def _kept(self, edges) -> list[bool]:
+        """Per edge (v, i, w, j, ...): whether slot (v, i) to (w, j) is an edge the host has
+        now (not one to draw)."""
+        prim, link = self.host.prim, self.host.link
+        return [v in prim and link[v][i] == (w, j) for v, i, w, j, _, _ in edges]
 
-    def _known(self, v, i, w, j, d, lab) -> float:
+    def _known(self, edge, kept: bool) -> float:
         """An edge's length known in advance: fixed by its class, or kept (an existing edge,
         as long as it is now); nan when it is drawn."""
         host = self.host
+        v, _, w, _, d, lab = edge
         fixed = host.t.lengths[lab][2]
         if fixed is not None:
             return fixed
-        if self._kept(v, i, w, j):
+        if kept:
             pv, pw = host.pos[v], host.pos[w]
             return d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
         return math.nan
@@ -504,17 +507,14 @@ class Solver:
         xs = x.tolist()
         tol = self.tol
         lengths = xs[2 * nF:]
-        if self.strict:
-            ok = all(s > tol and lt <= s <= ht for s, lt, ht in zip(lengths, rd.lo_tol, rd.hi_tol))
-        else:
-            ok = all(s > tol for s in lengths)
-        if not ok:
+        # One pass: the first length out of its class is the one blamed (not strict, only
+        # when some length is not positive).
+        if self.strict or not all(s > tol for s in lengths):
             for e, (s, lt, ht) in enumerate(zip(lengths, rd.lo_tol, rd.hi_tol)):
                 if not (s > tol and lt <= s <= ht):
                     self._blame(rd.edges[e])
-                    break
-            self._fail(Rejection.EDGE_LENGTH)
-            return None
+                    self._fail(Rejection.EDGE_LENGTH)
+                    return None
         pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
@@ -597,10 +597,9 @@ class Solver:
         boxes, link = grid.boxes, self.host.link
         for v, w, a, c, lx, ly, hx, hy in segs:
             for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
-                if key in ignore:
-                    continue
+                # The box first: most candidates are far, and the order of skips is free.
                 qlx, qly, qhx, qhy, p, q = boxes[key]
-                if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy:
+                if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy or key in ignore:
                     continue
                 x = key[0]
                 y = link[x][key[1]][0]

@@ -44,7 +44,6 @@ class Grid:
         self._pt_cells: dict[tuple[int, int], set] = {}
         self._tag_cells: dict[Hashable, dict] = {}  # tag → cell → the points with that tag
         self._tag_of: dict[Hashable, Hashable] = {}
-        self._segs: dict[Hashable, tuple[Point, Point]] = {}
         # Segment id → (low x, low y, high x, high y, end, end): its box, made once when it is
         # filed, for the crossing tests of every sample that comes near it. Read, don't change.
         self.boxes: dict[Hashable, tuple] = {}
@@ -66,21 +65,23 @@ class Grid:
         return (math.floor(min(x0, x1) / c), math.floor(max(x0, x1) / c),
                 math.floor(min(y0, y1) / c), math.floor(max(y0, y1) / c))
 
-    def box_cells(self, x0: float, y0: float, x1: float, y1: float,
-                  c: float | None = None) -> list[tuple[int, int]]:
-        i0, i1, j0, j1 = self.span(x0, y0, x1, y1, c)
-        if i0 == i1 and j0 == j1:        # the usual case for a point or a short edge
+    def _seg_cells_of(self, box: tuple) -> list[tuple[int, int]]:
+        """The segment cells a segment's box (see `boxes`) touches, from its low and high
+        ends (filing and unfiling a segment is part of every step's commit)."""
+        c = self.seg
+        i0, i1 = math.floor(box[0] / c), math.floor(box[2] / c)
+        j0, j1 = math.floor(box[1] / c), math.floor(box[3] / c)
+        if i0 == i1 and j0 == j1:        # the usual case for a short edge
             return [(i0, j0)]
         return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
 
     # --- segments ---------------------------------------------------------------------------
     def add_segment(self, sid: Hashable, a: Point, b: Point) -> None:
-        self._segs[sid] = (a, b)
         lx, hx = (a[0], b[0]) if a[0] < b[0] else (b[0], a[0])
         ly, hy = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
-        self.boxes[sid] = (lx, ly, hx, hy, a, b)
+        box = self.boxes[sid] = (lx, ly, hx, hy, a, b)
         cells = self._seg_cells
-        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
+        for k in self._seg_cells_of(box):
             cell = cells.get(k)
             if cell is None:
                 cell = cells[k] = set()
@@ -88,9 +89,7 @@ class Grid:
             cell.add(sid)
 
     def remove_segment(self, sid: Hashable) -> None:
-        a, b = self._segs.pop(sid)
-        del self.boxes[sid]
-        for k in self.box_cells(a[0], a[1], b[0], b[1], self.seg):
+        for k in self._seg_cells_of(self.boxes.pop(sid)):
             cell = self._seg_cells[k]
             cell.discard(sid)
             if not cell:
@@ -112,7 +111,7 @@ class Grid:
         return best
 
     def segment(self, sid: Hashable) -> tuple[Point, Point]:
-        return self._segs[sid]
+        return self.boxes[sid][4:]
 
     def segments_near(self, x0: float, y0: float, x1: float, y1: float) -> set:
         """Ids of segments filed in any cell the box touches (a superset of those meeting it).
@@ -271,13 +270,14 @@ class Grid:
         above it (above p.y + tol), which makes the ray miss segments that merely end at p or
         that leave a level vertex downwards. Segments leaving one level vertex upwards all
         meet the ray at that vertex; the one leaning furthest right is hit first, as it would
-        be just above p.y. Returns (id, x of the hit).
+        be just above p.y. The hit is kept within the segment's box. Returns (id, x of the hit).
         """
         px, py = p
         c = self.seg
         col0 = math.floor(px / c)
         top = py + tol
-        rows = sorted({math.floor((py - tol) / c), math.floor(top / c)})
+        r0, r1 = math.floor((py - tol) / c), math.floor(top / c)     # their order is free
+        rows = (r0,) if r0 == r1 else (r0, r1)
         b = self.bounds()
         if b is None:
             return None
@@ -302,19 +302,24 @@ class Grid:
                         ax, ay, bx, by = bx, by, ax, ay
                     lean = (bx - ax) / (by - ay)     # x gained per unit of height
                     x = ax if ay >= py - tol else ax + (py - ay) * lean
+                    # The exact hit lies in the segment's box; rounding can put the computed
+                    # one just outside, past the column where the stop test below expects it.
+                    x = lx if x < lx else hx if x > hx else x
                     if x >= px:
                         continue
                     key = (x, lean)
                     if best is None or key > best[:2] or (key == best[:2] and sid < best[2]):
                         best = (x, lean, sid)
-            if best is not None and best[0] >= col * c:
+            # Compared as the cells were filed (x / c), so that a segment filed only left of
+            # `col` cannot hold a hit right of this one.
+            if best is not None and best[0] / c >= col:
                 break
             # Jump to the next column with a segment: the cells skipped are empty, and the
             # stop test above would have held at the last of them if it holds anywhere there.
             nxt = self._next_column(col, rows)
             if nxt is None:
                 break
-            if nxt < col - 1 and best is not None and best[0] >= (nxt + 1) * c:
+            if nxt < col - 1 and best is not None and best[0] / c >= nxt + 1:
                 break
             col = nxt
         return None if best is None else (best[2], best[0])
