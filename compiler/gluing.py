@@ -52,6 +52,18 @@ class Graph:
             counts = self.__dict__["_prim_counts"] = Counter(self.verts)
         return counts
 
+    @property
+    def edge_counts(self) -> Counter:
+        """How many glued edges of each kind (the primitives and slots at its two ends, in
+        one order): a graph holds another only if it has as many of each, which rejects
+        most of the left sides that pass the primitive counts. Kept once asked for."""
+        counts = self.__dict__.get("_edge_counts")
+        if counts is None:
+            vs = self.verts
+            counts = self.__dict__["_edge_counts"] = Counter(
+                min((vs[v], i, vs[w], j), (vs[w], j, vs[v], i)) for v, i, w, j in self.edges)
+        return counts
+
     def tokens(self, rings: Sequence[Sequence[int]]) -> bd.Gaps:
         """The boundary in gap form over tokens: (half-edge token, turns after it) pairs."""
         return tuple((rings[self.verts[v]][i], n) for (v, i), n in self.gaps)

@@ -316,6 +316,9 @@ class Inference:
             have = g.prim_counts
             if any(have[p] < n for p, n in rr.prims.items()):
                 continue
+            glued = g.edge_counts
+            if any(glued[e] < n for e, n in rr.lhs.edge_counts.items()):
+                continue
             if host is None:
                 host = Host(g.verts, g.edges)
             if contains(rr.pattern, host, anchors) and not any(

@@ -121,3 +121,21 @@ def test_units_record_the_blocks_glued(which, choices):
         places = unit_places(g, [1] * len(rings))
         assert places is not None
         assert [g.verts[base] for _, base in places] == list(g.units)
+
+
+@given(st.integers(0, len(SETS) - 1), st.lists(st.integers(0, 10_000), min_size=1, max_size=9),
+       st.lists(st.integers(0, 10_000), min_size=1, max_size=9))
+def test_a_graph_that_holds_another_has_as_many_edges_of_each_kind(which, one, two):
+    """The compiler skips a left side whose edge counts a graph does not reach; that is sound
+    only if every graph that holds another has at least its edges of each kind."""
+    from compiler.occurrence import Host, Pattern, contains
+    rings = SETS[which]
+    for small in grow(rings, one):
+        for big in grow(rings, two):
+            if contains(Pattern.of(small), Host(big.verts, big.edges)):
+                assert all(big.edge_counts[e] >= n for e, n in small.edge_counts.items())
+    # Along one path of the hierarchy each graph holds its parent.
+    path = grow(rings, one)
+    for a, b in zip(path, path[1:]):
+        if len(b.verts) > len(a.verts):
+            assert contains(Pattern.of(a), Host(b.verts, b.edges))
