@@ -302,14 +302,13 @@ def test_in_a_frame_nothing_floats_but_what_the_example_has_free_standing(seed):
     assert_only_starters_float(host, g)
 
 
-@pytest.mark.parametrize("seed", [0, 1])
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
 def test_the_default_scene_cost_keeps_every_part_in_proportion(seed):
     """In a frame the default cost holds each face label's share of the edges near the
     example's: windows do not crowd out keeps and gates as the run grows, and none fades.
-    The castle's walls carry fixed merlons, so a wall fits only where its teeth do and
-    towers are the cheap part: by size alone gates fall to a quarter of their share and
-    roofs pass twice theirs (seeds 0-3); the scene cost keeps every part within these
-    bounds (its towers reach 1.32-1.39x here, its gates 0.81-0.84x)."""
+    By size alone roofs reach 1.8-1.9 times their share and towers 1.3-1.6 times. (With
+    every merlon of a fixed length, walls fitted only where their teeth did and the gates of
+    seeds 2 and 3 fell to 0.3-0.5 of their share: the example's end teeth are free.)"""
     from runtime.engine.costs import SceneCost, SizeCost, default_cost
     g = compile_example(load_example(SCENES["castle-scene"])).grammar
     cost = default_cost(g.header, 400)
@@ -324,8 +323,8 @@ def test_the_default_scene_cost_keeps_every_part_in_proportion(seed):
                 for ks, share in zip(cost.groups, cost.shares)]
 
     scene = ratios(cost)
-    assert all(0.75 <= r <= 1.45 for r in scene), scene
-    assert not all(0.75 <= r <= 1.45 for r in ratios(SizeCost(400)))
+    assert all(0.75 <= r <= 1.33 for r in scene), scene
+    assert not all(0.75 <= r <= 1.33 for r in ratios(SizeCost(400)))
 
 
 @pytest.mark.parametrize("seed", [0, 1])

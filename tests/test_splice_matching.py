@@ -27,7 +27,7 @@ from runtime.engine.matching import _corner, iter_matches
 ROOT = Path(__file__).resolve().parent.parent
 SOURCES = {
     "village": ROOT.parent / "shared" / "corpus" / "illustrations" / "village.gg",
-    "castle-scene": ROOT / "examples" / "castle-scene.gg",
+    "castle": ROOT.parent / "shared" / "corpus" / "illustrations" / "castle.gg",
     "h-complex": ROOT.parent / "shared" / "corpus" / "examples" / "h-complex.svg",
     "triangle-curl": ROOT.parent / "shared" / "corpus" / "examples" / "triangle-curl.svg",
 }
@@ -95,7 +95,7 @@ def test_the_ring_walks_are_the_drawings_faces(name, seed, steps):
 
 
 @pytest.mark.parametrize("name,seed,steps", [("village", 65, 0), ("village", 1, 30),
-                                             ("castle-scene", 2, 40)])
+                                             ("castle", 2, 40)])
 def test_spliced_parts_of_one_structure_face_each_other(name, seed, steps):
     engine = _grown(name, seed, steps)
     host = engine.host
