@@ -132,7 +132,6 @@ class Inference:
         self.spent = 0        # graphs of the hierarchies started again from other blocks
         self.group = group
         self.carry = None     # what a regrouping passes on to the next turning analysis
-        self.own_extra: set = set()   # the example's components and `reached`
         self.reached: set = set()     # starters a framed example's components reduce to
         self.faces = True             # faces rule out moves and force blocks (faces.py)
         self.left = None              # the blocks faces regrouped away from, and which group
@@ -618,7 +617,6 @@ class Inference:
         own = {canonical_key(g, self.ring_len) for g in graphs}
         self.reached = self._reached_starters(graphs, own)
         own |= self.reached
-        self.own_extra = own
         for g in graphs:
             if not self.loops and len(g.edges) >= len(g.verts):
                 continue      # the option forbids loops: a drawing with a cycle is no output
@@ -700,7 +698,7 @@ class Inference:
         dropped = 0
         if self.frame is not None:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
-            rules, dropped = frame_rules(rules, self.ex, own | self.own_extra)
+            rules, dropped = frame_rules(rules, self.ex, own | self.reached)
             rules = self._reached_unopened(rules)
             rules += frame_starters(self.ex, example_slots(self.ex))
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))

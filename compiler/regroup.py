@@ -33,7 +33,8 @@ def regroup(turns: TurnAnalysis, blocks: Sequence[Graph], faces: bool = True
     """The parts to merge (blocks, a block once per instance it is merged as), the forced
     pairs between them (by part) and whether faces forced them, or None when nothing is
     forced: forced pairs of slots if there are any, else (with `faces`) forced faces."""
-    dead, dead_moves = _dead_blocks(turns), set(turns.dead)
+    dead_moves = set(turns.dead)
+    dead = _dead_blocks(turns, dead_moves)
     pairs = []
     for u, ring in enumerate(turns.rings):
         if u in dead:
@@ -54,9 +55,8 @@ def regroup(turns: TurnAnalysis, blocks: Sequence[Graph], faces: bool = True
     return None if found is None else (*found, True)
 
 
-def _dead_blocks(turns: TurnAnalysis) -> set[int]:
+def _dead_blocks(turns: TurnAnalysis, dead_moves: set[int]) -> set[int]:
     """Blocks with an open slot that no live move leaves from, and so on."""
-    dead_moves = set(turns.dead)
     dead: set[int] = set()
     changed = True
     while changed:
@@ -82,11 +82,16 @@ def _forced_faces(turns: TurnAnalysis, blocks: Sequence[Graph],
     turns.solve()
     alive = set(live)
 
+    listed: dict[tuple[int, int], list | None] = {}
+
     def faces(u: int, k: int) -> list[tuple[int, ...]] | None:
-        """The faces through the gap, but for those through dead blocks (no such face)."""
-        walks = faces_through(turns, u, k)
-        return None if walks is None else \
-            [w for w in walks if alive.issuperset(face_units(turns, w))]
+        """The faces through the gap, but for those through dead blocks (no such face);
+        each gap searched once (the claims below ask again for gaps listed already)."""
+        if (u, k) not in listed:
+            walks = faces_through(turns, u, k)
+            listed[u, k] = None if walks is None else \
+                [w for w in walks if alive.issuperset(face_units(turns, w))]
+        return listed[u, k]
 
     forced: dict[tuple, tuple[int, ...]] = {}
     for u in live:
