@@ -20,9 +20,10 @@ below its class's minimum) makes it larger again, up to the local scale; when th
 turns back (crowded, then too short), the part has no room and the round ends. When the
 system is inconsistent (over-constrained), fixes some length outside its class whatever the
 sample, or a round's samples fail, more old vertices are freed: those nearest the edge
-whose length failed, else one next to a free one: I rounds. New edges' drawn lengths are
-stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices give way to a new part
-instead of squashing it.
+whose length failed, else one next to a free one: I rounds (fewer when two rounds in a row
+had no room and the caller, asked through `go_on`, says the rest rarely pay). New edges'
+drawn lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices
+give way to a new part instead of squashing it.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
