@@ -32,6 +32,7 @@ from ..geometry.spatial import Point
 from ..geometry.tables import Tables
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .host import Host
+from .late import LateRounds
 from .matching import Match, iter_matches
 from .rewrite import DirectedRule, commit, plan
 from .schedule import Schedule
@@ -128,6 +129,7 @@ class Engine:
         self.history: list[StepRecord] = []
         self.redo_stack: list[StepRecord] = []
         self.applied_by_level: dict[int, int] = {}
+        self.late = LateRounds()
         self._open()
 
     def _open(self) -> None:
@@ -256,8 +258,9 @@ class Engine:
         # A free-standing new component may go anywhere: a fresh place for every sample.
         floating = self._floating(change)
         center = (lambda: self._center(change)) if floating else (lambda: fixed)
+        key = (move.rule.name, move.forward)
         solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
-                        self.systems)
+                        self.systems, go_on=lambda: self.late.go_on(key))
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():
@@ -273,6 +276,8 @@ class Engine:
                 self.redo_stack.clear()
                 lv = rec.priority
                 self.applied_by_level[lv] = self.applied_by_level.get(lv, 0) + 1
+                if solver.went_on:
+                    self.late.placed(key)
                 return Outcome(rec)
             host.undo_ops(ops)
             solver._fail(Rejection.FACE_LABELS)

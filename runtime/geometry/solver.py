@@ -20,9 +20,10 @@ below its class's minimum) makes it larger again, up to the local scale; when th
 turns back (crowded, then too short), the part has no room and the round ends. When the
 system is inconsistent (over-constrained), fixes some length outside its class whatever the
 sample, or a round's samples fail, more old vertices are freed: those nearest the edge
-whose length failed, else one next to a free one: I rounds. New edges' drawn lengths are
-stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices give way to a new part
-instead of squashing it.
+whose length failed, else one next to a free one: I rounds (fewer when two rounds in a row
+had no room and the caller, asked through `go_on`, says the rest rarely pay). New edges'
+drawn lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices
+give way to a new part instead of squashing it.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
@@ -92,8 +93,13 @@ class Solver:
     def __init__(self, host: HostView, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
                  floating: bool = False, cache: SystemCache | None = None,
-                 strict: bool = True):
+                 strict: bool = True, go_on: Callable[[], bool] | None = None):
         self.host, self.change, self.rng = host, change, rng
+        # Asked when two rounds in a row had no room: whether to go on with the rest (None:
+        # always). A generation step's proposal is one of many, and the engine knows how
+        # often such rounds place for its move (LateRounds); `went_on` says it was asked and
+        # said yes, so the engine can count what came of it.
+        self.go_on, self.went_on = go_on, False
         self.cache = SystemCache() if cache is None else cache
         # False: only directions and positive lengths are kept; no class ranges, fixed
         # lengths, tiles or crossing tests (the last resort of a figure, see place_side).
@@ -207,6 +213,7 @@ class Solver:
         if not free and not self.bridges:
             yield Placement({})
             return
+        cramped = False         # whether the last round ended with no room (_round_samples)
         for rnd in range(1, self.I + 1):
             rd = self._system(free)
             if rd is None:
@@ -214,24 +221,37 @@ class Solver:
             elif isinstance(rd, Rejection):
                 self._fail(rd)
             else:
-                f, last = 1.0, 0        # the way f last moved: −1 smaller, +1 larger
-                for _ in range(1 if self.unique else self.J):
-                    pos = self._sample(free, rd, f)
-                    if pos is not None:
-                        yield Placement(pos)
-                        continue
-                    g = f * SHRINK if self.last_failure in CROWDED else min(self.f_max, f / SHRINK)
-                    way = (g > f) - (g < f)
-                    if way and way == -last:
-                        # Crowded at one size and too short at the next smaller (or the other
-                        # way round): the part has no room while only these vertices move.
-                        # Such a round's further samples rarely pass (h-complex at 20,000
-                        # vertices: 16 % of first samples pass, 1-2.5 % from the sixth on), so
-                        # the next round, which frees more, starts now.
-                        break
-                    f, last = g, way or last
+                was = cramped
+                cramped = yield from self._round_samples(free, rd)
+                if cramped and was and self.go_on is not None:
+                    # Two rounds in a row with no room: freeing more old vertices did not
+                    # make it. Whether the rounds after pay is the caller's to say.
+                    self.went_on = self.go_on()
+                    if not self.went_on:
+                        return
             if rnd == self.I or not self._free_one(free):
                 return
+
+    def _round_samples(self, free: list[int], rd: "_Round"):
+        """A round's samples (up to J), yielding each that passes; returns whether the round
+        ended because the part has no room while only these vertices move."""
+        f, last = 1.0, 0        # the way f last moved: −1 smaller, +1 larger
+        for _ in range(1 if self.unique else self.J):
+            pos = self._sample(free, rd, f)
+            if pos is not None:
+                yield Placement(pos)
+                continue
+            g = f * SHRINK if self.last_failure in CROWDED else min(self.f_max, f / SHRINK)
+            way = (g > f) - (g < f)
+            if way and way == -last:
+                # Crowded at one size and too short at the next smaller (or the other way
+                # round): the part has no room while only these vertices move. Such a round's
+                # further samples rarely pass (h-complex at 20,000 vertices: 16 % of first
+                # samples pass, 1-2.5 % from the sixth on), so the next round, which frees
+                # more, starts now.
+                return True
+            f, last = g, way or last
+        return False
 
     def _free_one(self, free: list[int]) -> bool:
         """Free more old vertices for the next round. When a length failed (fixed or doomed
