@@ -468,7 +468,6 @@ class _Context:
 
     # --- lengths ----------------------------------------------------------------------------
     def lengths(self) -> None:
-        spans = self._spanning()
         for e, de in enumerate(self.d.edges):
             if e in self.bad_edges or de.cls not in self.ix.classes:
                 continue
@@ -491,23 +490,11 @@ class _Context:
                         expected = f"a multiple of {_num(c.tile)}"
                 if problem is None and c.min_length is not None and L < c.min_length - slack:
                     problem, expected = "is shorter than its class allows", f"at least {_num(c.min_length)}"
-                if problem is None and c.max_length is not None and L > c.max_length + slack \
-                        and e not in spans:
+                if problem is None and c.max_length is not None and L > c.max_length + slack:
                     problem, expected = "is longer than its class allows", f"at most {_num(c.max_length)}"
             if problem:
                 self.fail("length", f"{self.edge_name(e)} (class {de.cls}) {problem}",
                           (de.u, de.v), (e,), self.mid(e), expected=expected, found=_num(L))
-
-    def _spanning(self) -> set[int]:
-        """The edges, not of a border class, whose two ends lie on the border (a vertex with
-        a border edge): lines across the space, as long as the frame makes them, whatever
-        their class's maximum (paper Appendix A; runtime.geometry.solver draws them so)."""
-        border = {name for name, c in self.ix.classes.items() if c.border}
-        if not border:
-            return set()
-        on = {u for de in self.d.edges if de.cls in border for u in (de.u, de.v)}
-        return {e for e, de in enumerate(self.d.edges)
-                if de.cls not in border and de.u in on and de.v in on}
 
     # --- crossings, touches, overlaps, coincident vertices ----------------------------------
     def geometry(self) -> bool:

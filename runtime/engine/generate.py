@@ -34,7 +34,7 @@ from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .host import Host
 from .late import LateRounds
 from .matching import Match, iter_matches
-from .rewrite import DirectedRule, commit, cuts_off, plan
+from .rewrite import DirectedRule, commit, plan
 from .schedule import Schedule
 
 # Stop after this many proposals in a row that could not be placed or were refused.
@@ -248,8 +248,6 @@ class Engine:
         change = plan(host, move, match, self.schedule.spo)
         if host.pinned and not host.pinned.isdisjoint(change.removed):
             return Outcome(None, Rejection.MOVES_FRAME)
-        if move.may_cut and cuts_off(host, change):
-            return Outcome(None, Rejection.CUTS_OFF)
         if use_cost:
             after = self.stats(change)
             if after != screened:

@@ -41,9 +41,6 @@ class DirectedRule:
     replacement: Side
     # Open slot of `replacement` for each open slot of the pattern, in boundary order.
     interface: tuple[tuple[Slot, Slot], ...]
-    # The side it makes has more pieces than the one it matches, so where it matches it may
-    # cut the drawing in two; in a frame such a move is tested where it matches (`cuts_off`).
-    may_cut: bool = False
 
     @property
     def name(self) -> str:
@@ -98,47 +95,6 @@ def plan(host: Host, rule: DirectedRule, match: Match, spo: bool = False) -> Cha
         for i in range(len(host.t.rings[prim])):
             partner.setdefault((v, i), None)
     return Change(rule, match, removed, new, tuple(glue), cut, partner)
-
-
-def cuts_off(host: Host, change: Change) -> bool:
-    """Whether `change` leaves the old vertices it touches in more connected pieces than they
-    are in now: a part of the drawing would be cut off to float. The old vertices are joined
-    through the rest of the drawing, not only through the match, so a move whose own sides
-    split (a divider removed between two lines that both reach the frame) may still keep
-    them together. Two searches over the pieces touched, before and after."""
-    gone = set(change.removed)
-    ends = {s[0] for v in change.removed for s in host.link[v] if s is not None}
-    ends.update(v for s in change.cut for v in (s[0], host.link[s[0]][s[1]][0]))
-    ends -= gone
-    new = dict(change.new)
-
-    def now(v):
-        return (s[0] for s in host.link[v] if s is not None)
-
-    def after(v):
-        prim = new.get(v)
-        return (s[0] for _, s in change.adjacency(host, v, host.prim[v] if prim is None else prim)
-                if s[0] not in gone)
-
-    return _pieces(sorted(ends), after) > _pieces(sorted(ends), now)
-
-
-def _pieces(ends: list[int], neighbours) -> int:
-    """In how many connected pieces the vertices `ends` lie, following `neighbours`."""
-    seen: set[int] = set()
-    count = 0
-    for v in ends:
-        if v in seen:
-            continue
-        count += 1
-        seen.add(v)
-        todo = [v]
-        while todo:
-            for w in neighbours(todo.pop()):
-                if w not in seen:
-                    seen.add(w)
-                    todo.append(w)
-    return count
 
 
 def commit(host: Host, change: Change, positions: dict[int, Point]) -> list[tuple]:

@@ -19,7 +19,6 @@ creates its component (it runs ∅ → lhs) and never deletes one.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 from dataclasses import dataclass
 from typing import Callable
@@ -79,15 +78,10 @@ class Schedule:
         both = (not spo) if bidirectional is None else bidirectional
         rings = grammar.rings
         connected = grammar.header.options.connected
-        # In a frame, structures stand on it: no move may cut a part off to float in the
+        # In a frame, structures stand on it: no rule may cut a part off to float in the
         # space (a roof lifted off its tower), though a starter may still make a part the
-        # example has free-standing (a window). A connected grammar drops the moves whose
-        # sides split (paper Appendix A). A framed one drops them too, but tests where they
-        # match those that take a part away and leave bare lines: the lines may stay joined
-        # through the frame (a divider taken from between two of the village's strip lines).
-        # Those that rebuild a part in pieces stay dropped: let in too, they changed the castle
-        # scene's proportions (docs/scenes.md, 2026-12-03).
-        framed = grammar.header.frame is not None
+        # example has free-standing (a window).
+        whole = connected or grammar.header.frame is not None
         by_level: dict[int, list[tuple[DirectedRule, float]]] = {}
         opening = []
         for rule in grammar.rules:
@@ -99,13 +93,10 @@ class Schedule:
             # Forward only, a starter is used to create its component (rhs ∅ → lhs).
             dirs = (True, False) if both else ((False,) if rule.is_starter else (True,))
             for fwd in dirs:
-                cuts = not rule.is_starter and (connected or framed) and _splits(rule, fwd)
-                move = DirectedRule.build(rule, fwd, rings)
-                if cuts and (connected or move.replacement.vertices):
+                if whole and not rule.is_starter and _splits(rule, fwd):
                     continue
-                if cuts:
-                    move = dataclasses.replace(move, may_cut=True)
-                by_level.setdefault(rule.priority, []).append((move, float(rule.weight)))
+                by_level.setdefault(rule.priority, []).append(
+                    (DirectedRule.build(rule, fwd, rings), float(rule.weight)))
         limits = limits or {}
         levels = []
         for p in sorted(by_level):

@@ -374,7 +374,7 @@ class Solver:
         constant) lies outside its class's range: then every sample fails."""
         tol = self.tol
         for e in fact.fixed_idx:
-            lt, ht = self._edge_bounds(edges[e], self._known(edges[e], kept[e]))
+            lt, ht = self._bounds(edges[e][-1], self._known(edges[e], kept[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
                 self._blame(edges[e])
                 return True
@@ -447,7 +447,7 @@ class Solver:
             known.append(kn)
             if kn != kn:
                 drawn.append(e)
-            lt, ht = self._edge_bounds(edge, kn)
+            lt, ht = self._bounds(lab, kn)
             lo_tol.append(lt)
             hi_tol.append(ht)
             if tile and fixed is None:
@@ -474,23 +474,6 @@ class Solver:
             pv, pw = host.pos[v], host.pos[w]
             return d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
         return math.nan
-
-    def _edge_bounds(self, edge, kn: float) -> tuple[float, float]:
-        """`_bounds` of one edge (v, i, w, j, direction, label): a line that runs from the
-        frame's border to its border has no longest length. It stands for a line that extends
-        infinitely far (paper Appendix A), cut by the frame, so its length is the frame's, not
-        its class's: one strip line across the village's frame is 1,540 px, its class 440."""
-        lt, ht = self._bounds(edge[-1], kn)
-        if self._spans(edge):
-            return lt, math.inf
-        return lt, ht
-
-    def _spans(self, edge) -> bool:
-        """Whether `edge` runs from the frame's border to its border, not along it. One end
-        alone does not do: a tower's side stands on the ground and keeps its class."""
-        host = self.host
-        return host.frame is not None and edge[-1] not in host.border_labels \
-            and self.prim(edge[0]) in host.on_border and self.prim(edge[2]) in host.on_border
 
     def _bounds(self, lab: int, kn: float) -> tuple[float, float]:
         """A length's class range widened by the tolerance. A drawn edge also keeps its
