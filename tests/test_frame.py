@@ -307,7 +307,7 @@ def test_the_default_scene_cost_keeps_every_part_in_proportion(seed):
     """In a frame the default cost holds each face label's share of the edges near the
     example's: windows do not crowd out keeps and gates as the run grows, and none fades.
     By size alone roofs reach 1.9-2.4 times their share and towers 1.35-1.65 times; with the
-    scene cost every part stays within 0.72-1.30 (gates are the lowest: towers are the
+    scene cost every part stays within 0.73-1.32 (gates are the lowest: towers are the
     easiest part to place). (With every merlon of a fixed length, walls fitted only where
     their teeth did and the gates of seeds 2 and 3 fell to 0.3-0.5 of their share: the
     example's end teeth are free.)"""
