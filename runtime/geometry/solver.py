@@ -70,9 +70,9 @@ SHRINK = 0.75
 # (stretched as their neighbourhood is), or the local scale where the typical length is not
 # known. Longer than short: a part that is to hold more than the example's part did (a
 # station's module with a second connector under it, a castle's block with a keep on it)
-# must be drawn wider than typical, and within ±50 % the paper's station grew as one column
-# and its castle as thin poles (over seeds 0-3 at the paper's N: station 117 → 153
-# vertices, 32 → 49 % of its frame covered; castle 272 → 291, 40 → 45 %).
+# must be drawn wider than typical. Within ±50 % the paper's castle grew mostly thin poles
+# and one keep, and its station covered less (over seeds 0-3 at the paper's N: station
+# 117 → 153 vertices, 32 → 49 % of its frame covered; castle 272 → 291, 40 → 45 %).
 _LOW, _HIGH = 0.5, 1.8
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
