@@ -688,9 +688,9 @@ class _Round:
 
     def ranges(self, f: float) -> tuple[list, list, list]:
         """Where new edges' target lengths are drawn at size factor `f`: (low end, high end,
-        width) per drawn edge. Within _LOW·centre·f to _HIGH·centre·f, inside the range the length test
-        allows (the class, above the label's floor), or that whole range when it misses it;
-        when a shrunk range falls below it, its shortest length."""
+        width) per drawn edge. From _LOW·centre·f to _HIGH·centre·f, inside the range the
+        length test allows (the class, above the label's floor), or that whole range when it
+        misses it; when a shrunk range falls below it, its shortest length."""
         r = self._ranges.get(f)
         if r is None:
             los, his, widths = [], [], []
