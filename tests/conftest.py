@@ -11,6 +11,8 @@ pin_blas_threads()
 ROOT = Path(__file__).resolve().parent.parent
 # The corpus lives beside the repository (../shared/corpus); GG_CORPUS overrides.
 CORPUS = Path(os.environ.get("GG_CORPUS", ROOT.parent / "shared" / "corpus" / "examples"))
+# The paper's illustrations sit beside the corpus examples (so GG_CORPUS moves both).
+ILLUSTRATIONS = CORPUS.parent / "illustrations"
 
 
 def corpus_names() -> list[str]:

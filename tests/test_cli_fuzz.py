@@ -20,7 +20,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from compiler.cli import main as ggc
-from conftest import CORPUS, ROOT
+from conftest import CORPUS, ILLUSTRATIONS, ROOT
 from report.ggrun import main as ggrun
 
 FUZZ = settings(max_examples=60, deadline=None,
@@ -200,7 +200,7 @@ def test_any_input_run_twice_gives_the_same_bytes(path):
 def test_two_runs_at_once_give_the_same_bytes(tmp_path):
     """The paper's castle at a fixed number of iterations, two processes at the same time
     (each slows the other): the same bytes, since every limit counts work."""
-    castle = ROOT.parent / "shared" / "corpus" / "illustrations" / "castle.gg"
+    castle = ILLUSTRATIONS / "castle.gg"
     outs = [tmp_path / f"c{k}.svg" for k in range(2)]
     procs = [subprocess.Popen([sys.executable, "-m", "report.ggrun", str(castle), "--iterations",
                                "150", "--seed", "80", "--out", str(o), "--quiet"], cwd=ROOT)

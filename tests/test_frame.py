@@ -15,7 +15,7 @@ from grammar_lang.loader import load_example
 from runtime.engine.generate import Engine
 from runtime.verifier import check_drawing
 
-ILLUSTRATIONS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "illustrations"
+from conftest import ILLUSTRATIONS  # noqa: E402
 NAMES = ["castle", "village", "flowers", "space-station"]
 
 

@@ -21,7 +21,7 @@ from runtime.engine.generate import Engine
 from runtime.geometry.tables import PROPORTION
 from runtime.verifier import check_drawing
 
-ILLUSTRATIONS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "illustrations"
+from conftest import ILLUSTRATIONS  # noqa: E402
 
 
 @lru_cache(maxsize=None)

@@ -9,7 +9,6 @@ the same line, whose other side faces away.
 """
 
 from functools import lru_cache
-from pathlib import Path
 
 import networkx as nx
 import numpy as np
@@ -24,12 +23,12 @@ from runtime.engine.costs import default_cost
 from runtime.engine.generate import Engine
 from runtime.engine.matching import _corner, iter_matches
 
-ROOT = Path(__file__).resolve().parent.parent
+from conftest import CORPUS, ILLUSTRATIONS  # noqa: E402
 SOURCES = {
-    "village": ROOT.parent / "shared" / "corpus" / "illustrations" / "village.gg",
-    "castle": ROOT.parent / "shared" / "corpus" / "illustrations" / "castle.gg",
-    "h-complex": ROOT.parent / "shared" / "corpus" / "examples" / "h-complex.svg",
-    "triangle-curl": ROOT.parent / "shared" / "corpus" / "examples" / "triangle-curl.svg",
+    "village": ILLUSTRATIONS / "village.gg",
+    "castle": ILLUSTRATIONS / "castle.gg",
+    "h-complex": CORPUS / "h-complex.svg",
+    "triangle-curl": CORPUS / "triangle-curl.svg",
 }
 
 
