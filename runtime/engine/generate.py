@@ -115,6 +115,7 @@ class Engine:
         self.I, self.J = I, J
         self._deltas: dict[int, tuple] = {}
         self._outer: dict[int, str | None] = {}     # move → outer label of what it creates
+        self._feet: dict[int, float] = {}           # move → its footprint (_footprint)
         self.tables = Tables.build(grammar.header)
         self._corners = sectors(self.tables)
         self.systems = SystemCache()       # factorisations by system shape, across steps
@@ -384,7 +385,11 @@ class Engine:
             # A structure stood on a bare stretch of the frame's side: anywhere along it.
             (v, i), = change.cut
             p, q = host.pos[v], host.pos[host.link[v][i][0]]
-            f = 0.1 + 0.8 * float(self.rng.random())
+            # Aimed where its footprint fits between the stretch's ends: aimed anywhere, a
+            # wide structure (a castle's block with its keep) mostly overlaps an end of a
+            # short stretch and never places.
+            margin = max(0.1, min(0.5, 0.5 * self._footprint(change) / (math.dist(p, q) or 1.0)))
+            f = margin + (1.0 - 2.0 * margin) * float(self.rng.random())
             return (p[0] + f * (q[0] - p[0]), p[1] + f * (q[1] - p[1]))
         if not pts:
             pts = [host.pos[b[0]] for _, b in change.glue if b[0] in host.prim]
@@ -410,6 +415,20 @@ class Engine:
         ang = float(self.rng.random()) * 2 * math.pi
         r = host.t.unit * (1.0 + 2.0 * float(self.rng.random()))
         return (base[0] + r * math.cos(ang), base[1] + r * math.sin(ang))
+
+    def _footprint(self, change: Change) -> float:
+        """How much of a frame's side a structure stood on it covers at typical lengths: its
+        new edges of a border class (along the side), but for the two that join it to the
+        stretch's ends."""
+        key = id(change.rule)
+        if key not in self._feet:
+            t, new = self.host.t, dict(change.new)
+            self._feet[key] = sum(
+                t.typical[lab] for a, b in change.glue
+                if a[0] in new and b[0] in new
+                for lab in (t.label[new[a[0]]][a[1]],)
+                if lab in self.host.border_labels and t.typical[lab] == t.typical[lab])
+        return self._feet[key]
 
     def _landing_label(self, change: Change) -> str | None:
         key = id(change.rule)
