@@ -5,6 +5,8 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from compiler.infer import compile_example
 from grammar_lang.diagnostics import UserError
@@ -506,3 +508,49 @@ def test_in_a_frame_a_part_left_out_costs_more_than_one_that_strays(castle):
         assert off(100) == 0.0 and off(95) == 0.0              # within the slack of 10
         assert off(1) == pytest.approx(100 - 1 - 10)
         assert off(0) == pytest.approx(absent * 100 if absent else 100 - 10)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_a_structure_stood_on_a_stretch_is_aimed_where_it_fits(castle_stands, seed):
+    """A structure stood on a bare stretch of the frame's side is aimed at least half its
+    footprint (its new border edges at typical lengths) from either end of the stretch, and a
+    tenth of the stretch at least; in the middle when the stretch is shorter than it is."""
+    import math
+
+    import numpy as np
+
+    from runtime.engine.rewrite import plan
+    eng, stands = castle_stands
+    eng.rng = np.random.default_rng(seed)
+    host = eng.host
+    aimed = 0
+    for move in stands:
+        for m in eng.matches(move, limit=3):
+            change = plan(host, move, m, False)
+            if len(change.cut) != 1 or change.removed:
+                continue
+            (v, i), = change.cut
+            p, q = host.pos[v], host.pos[host.link[v][i][0]]
+            length, foot = math.dist(p, q), eng._footprint(change)
+            assert foot > 0
+            margin = max(0.1 * length, min(0.5 * length, 0.5 * foot))
+            for _ in range(5):
+                c = eng._center(change)
+                assert min(math.dist(c, p), math.dist(c, q)) >= margin - 1e-6
+                assert abs(math.dist(c, p) + math.dist(c, q) - length) < 1e-6
+                aimed += 1
+    assert aimed
+
+
+@pytest.fixture(scope="module")
+def castle_stands(castle):
+    """The paper's castle grown a little, and its moves that stand a structure on the
+    ground (a wire along the frame's side matched, nothing removed)."""
+    from runtime.engine.costs import default_cost
+    g = castle[1].grammar
+    eng = Engine(g, seed=3, cost=default_cost(g.header, 4000))
+    eng.run(None, iterations=300)
+    stands = [mv for mv in eng.moves() if mv.rule.name.startswith("stand") and not mv.forward]
+    assert stands
+    return eng, stands
