@@ -42,6 +42,7 @@ import numpy as np
 from grammar_lang.algorithms.components import DisjointSet
 
 from .change import Change, HostView
+from .pinv import pinv
 from .rejections import Rejection
 from .spatial import Point, seg_distance
 
@@ -740,7 +741,7 @@ class Factor:
             for r, e in enumerate(tiled):
                 rows[r, 2 * nF + e] = 1.0
             A2 = np.vstack([self.A, rows])
-            pinned = self._pinned[tiled] = (A2, np.linalg.pinv(A2, rcond=1e-10))
+            pinned = self._pinned[tiled] = (A2, pinv(A2))
         return pinned
 
 
@@ -768,19 +769,6 @@ class SystemCache:
         return fact
 
 
-def _pinv(M: np.ndarray, rcond: float = 1e-10) -> np.ndarray:
-    """numpy's pseudo-inverse; where its SVD (LAPACK gesdd) does not converge, which happens
-    on some finite, rank-deficient systems of large structures, the slower and sturdier
-    gesvd gives the same pseudo-inverse."""
-    try:
-        return np.linalg.pinv(M, rcond=rcond)
-    except np.linalg.LinAlgError:
-        import scipy.linalg
-        u, sv, vt = scipy.linalg.svd(M, full_matrices=False, lapack_driver="gesvd")
-        keep = sv > rcond * (sv[0] if sv.size else 0.0)
-        return (vt[keep].T / sv[keep]) @ u[:, keep].T
-
-
 def _factorise(kind: tuple[int, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
     p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
@@ -789,20 +777,22 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
     nF, nE = len(kind), len(edges)
     fixed = [e for e, (_, _, _, f, _, _) in enumerate(edges) if f is not None]
     A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
-    for e, (iv, iw, d, _, _, _) in enumerate(edges):
-        for c in (0, 1):
-            if iw >= 0:
-                A[2 * e + c, 2 * iw + c] += 1.0
-            if iv >= 0:
-                A[2 * e + c, 2 * iv + c] -= 1.0
-            A[2 * e + c, 2 * nF + e] = -d[c]
+    iv, iw, d = (np.array(col) for col in zip(*(e[:3] for e in edges))) if edges else \
+        (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 2)))
+    rows, e_idx = np.arange(2 * nE), np.repeat(np.arange(nE), 2)
+    coord = np.tile([0, 1], nE)
+    # np.add.at: an edge from a vertex to itself adds +1 and -1 to one cell, as a loop did.
+    at_w, at_v = np.repeat(iw >= 0, 2), np.repeat(iv >= 0, 2)
+    np.add.at(A, (rows[at_w], 2 * np.repeat(iw, 2)[at_w] + coord[at_w]), 1.0)
+    np.add.at(A, (rows[at_v], 2 * np.repeat(iv, 2)[at_v] + coord[at_v]), -1.0)
+    A[rows, 2 * nF + e_idx] = -np.asarray(d, dtype=float).reshape(-1)
     A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
     scale = np.empty(2 * nF + nE)
     scale[:2 * nF] = np.repeat(POS_SCALE[np.asarray(kind, dtype=int)], 2)
     scale[2 * nF:] = [FRAME_SIDE if side else DRAWN_LENGTH if drawn else LENGTH
                       for *_, side, drawn in edges]
     M = A * scale
-    Mp = _pinv(M)
+    Mp = pinv(M)
     P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
     R = P[2 * nF:]
     fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
