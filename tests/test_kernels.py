@@ -5,6 +5,7 @@ bytes do not depend on the CPU (AVX2, AVX-512) it was made on."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 
@@ -49,3 +50,25 @@ def test_the_tests_run_the_baseline_kernels():
     from threadpoolctl import threadpool_info
     assert numpy is not None and {i.get("architecture") for i in threadpool_info()
                                   if i.get("internal_api") == "openblas"} == {"Nehalem"}
+
+
+LATE = """
+import json
+import numpy as np
+from grammar_lang.blas import pin_blas_threads
+pin_blas_threads()
+from runtime.geometry.pinv import pinv
+pinv(np.eye(3))                 # loads scipy's own OpenBLAS, after the pinning
+from threadpoolctl import threadpool_info
+print(json.dumps([[i.get("filepath"), i.get("num_threads"), i.get("architecture")]
+                  for i in threadpool_info() if i.get("internal_api") == "openblas"]))
+"""
+
+
+def test_a_blas_loaded_after_the_pinning_runs_one_thread_and_the_baseline_kernels():
+    out = subprocess.run([sys.executable, "-c", LATE], capture_output=True, text=True,
+                         timeout=60, check=True, env={**os.environ, "OPENBLAS_NUM_THREADS": "2"})
+    libs = json.loads(out.stdout)
+    assert len(libs) >= 2, libs          # numpy's and scipy's
+    assert {n for _, n, _ in libs} == {1}, libs
+    assert {a for _, _, a in libs} == {"Nehalem"}, libs
