@@ -1,5 +1,6 @@
-"""A move's late rounds (after two in a row with no room) are skipped only once its record
-says they rarely place, and skipping them only cuts a proposal's placements short."""
+"""A move's late rounds (after its first) are skipped only once its record says they place
+much less often per sample than the run does, and skipping them only cuts a proposal's
+placements short."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from conftest import CORPUS
 from report.ggrun import compile_example
 from runtime.engine.costs import SizeCost
 from runtime.engine.generate import Engine
-from runtime.engine.late import PAYS, PROBE, TRIAL, LateRounds
+from runtime.engine.late import PRIOR, PROBE, WORSE, LateRounds
 from runtime.engine.rewrite import plan
 from runtime.geometry.solver import Solver
 from runtime.run_cmd import load_grammar
@@ -22,17 +23,26 @@ KEY = ("r1", True)
 
 def test_late_rounds_go_on_until_tried_and_while_they_pay():
     late = LateRounds()
-    assert all(late.go_on(KEY) for _ in range(TRIAL))
-    # None placed in TRIAL tries: from now on only one ask in PROBE goes on.
+    late.spent(None, 10 ** 6, 0, False)        # the run places once per 10 samples
+    for _ in range(10 ** 5):
+        late.spent(None, 0, 0, True)
+    # Late rounds that never place are given up on once they drew as many samples as
+    # PRIOR placements at 1/WORSE of the run's rate take: 10·WORSE·PRIOR (the run's own
+    # count grows with them, by a hundredth at most here).
+    drawn = 0
+    while late.record.get(KEY, [0, 0, 0])[2] == 0:
+        assert late.go_on(KEY)
+        late.spent(KEY, 1, 1, False)
+        drawn += 1
+    assert abs(drawn - 10 * WORSE * PRIOR) <= 2
+    # From then on one ask in PROBE goes on (the first refused one among them).
     answers = [late.go_on(KEY) for _ in range(3 * PROBE)]
-    assert answers == [k % PROBE == 0 for k in range(3 * PROBE)]
-    # Enough placed (PAYS of the tries): every ask goes on again.
-    tried = late.record[KEY][0]
-    for _ in range(int(PAYS * (tried + PROBE)) + 1):
-        late.placed(KEY)
+    assert answers.count(True) == 3 and answers[PROBE - 1]
+    # One placement moves the bar by 10·WORSE samples: every ask goes on again.
+    late.spent(KEY, 0, 1, True)
     assert all(late.go_on(KEY) for _ in range(PROBE))
     # Each move keeps its own record.
-    assert late.go_on(("r1", False)) and late.record[("r1", False)] == [1, 0, 0]
+    assert late.go_on(("r1", False)) and late.record[("r1", False)] == [0, 0, 0]
 
 
 @pytest.fixture(scope="module")
@@ -85,7 +95,7 @@ def test_skipping_late_rounds_only_cuts_the_placements_short(crowded, k, seed):
 
 
 def test_the_question_is_asked_in_crowded_places(crowded):
-    """Not vacuous: some of the proposals reach two rounds with no room."""
+    """Not vacuous: some of the proposals' first rounds do not place."""
     eng, props = crowded
     asked = sum(_placements(eng, m, x, s, lambda: False)[1]
                 for m, x in props for s in range(5))

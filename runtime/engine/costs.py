@@ -42,12 +42,21 @@ class Cost(Protocol):
 
     def value(self, s: Stats) -> float: ...
 
+    def proportions(self, s: Stats) -> float:
+        """The part of `value` that asks for the example's parts in proportion, not for a
+        size: a change that lowers it is one the cost wants, and the engine tries harder to
+        place it (see late.py). 0 for the costs of size alone."""
+        ...
+
 
 @dataclass(frozen=True)
 class NoCost:
     name: str = "none"
 
     def value(self, s: Stats) -> float:
+        return 0.0
+
+    def proportions(self, s: Stats) -> float:
         return 0.0
 
 
@@ -67,6 +76,9 @@ class SizeCost:
         d = s.vertices - self.target
         return float(-d) if d < 0 else OVERSHOOT * d
 
+    def proportions(self, s: Stats) -> float:
+        return 0.0
+
 
 @dataclass(frozen=True)
 class DensityCost:
@@ -75,6 +87,9 @@ class DensityCost:
 
     def value(self, s: Stats) -> float:
         return abs(s.vertices - self.per_unit2 * s.area)
+
+    def proportions(self, s: Stats) -> float:
+        return 0.0
 
 
 @dataclass(frozen=True)
@@ -85,6 +100,9 @@ class LabelCost:
 
     def value(self, s: Stats) -> float:
         return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
+
+    def proportions(self, s: Stats) -> float:
+        return self.value(s)
 
 
 @dataclass(frozen=True)
@@ -119,6 +137,9 @@ class SceneCost:
     name: str = "scene"
 
     def value(self, s: Stats) -> float:
+        return self.size.value(s) + self.proportions(s)
+
+    def proportions(self, s: Stats) -> float:
         off = 0.0
         for ks, f in zip(self.groups, self.shares):
             # Counts are predicted before a move is matched: a move that cannot match (one
@@ -129,7 +150,7 @@ class SceneCost:
                 off += self.absent * expected
             else:
                 off += max(0.0, abs(n - expected) - math.sqrt(expected))
-        return self.size.value(s) + off
+        return off
 
 
 def default_cost(header, steps: int) -> Cost:

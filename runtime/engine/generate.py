@@ -261,7 +261,8 @@ class Engine:
         center = (lambda: self._center(change)) if floating else (lambda: fixed)
         key = (move.rule.name, move.forward)
         solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
-                        self.systems, go_on=lambda: self.late.go_on(key))
+                        self.systems, go_on=lambda: self._wanted(change, use_cost)
+                        or self.late.go_on(key))
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():
@@ -277,14 +278,26 @@ class Engine:
                 self.redo_stack.clear()
                 lv = rec.priority
                 self.applied_by_level[lv] = self.applied_by_level.get(lv, 0) + 1
-                if solver.went_on:
-                    self.late.placed(key)
+                self._spent(key, solver, True)
                 return Outcome(rec)
             host.undo_ops(ops)
             solver._fail(Rejection.FACE_LABELS)
+        self._spent(key, solver, False)
         why = max(sorted(solver.failures), key=lambda k: solver.failures[k]) \
             if solver.failures else Rejection.NO_PLACEMENT
         return Outcome(None, why)
+
+    def _wanted(self, change: Change, use_cost: bool) -> bool:
+        """Whether the cost wants `change` for the example's proportions (it lowers their
+        part of the cost): such a proposal goes on with its late rounds whatever its move's
+        record. A part under its share is often one that is hard to place (the castle's
+        gates need a gap of the right width), and only late rounds make room for it."""
+        c = self.cost
+        return use_cost and c.proportions(self.stats(change)) < c.proportions(self.stats())
+
+    def _spent(self, key, solver: Solver, placed: bool) -> None:
+        late = solver.samples - solver.late_from if solver.went_on else 0
+        self.late.spent(key if solver.went_on else None, solver.samples, late, placed)
 
     def undo(self) -> StepRecord | None:
         if not self.history:

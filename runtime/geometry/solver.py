@@ -96,11 +96,13 @@ class Solver:
                  floating: bool = False, cache: SystemCache | None = None,
                  strict: bool = True, go_on: Callable[[], bool] | None = None):
         self.host, self.change, self.rng = host, change, rng
-        # Asked when two rounds in a row had no room: whether to go on with the rest (None:
+        # Asked when the first round did not place: whether to go on with the rest (None:
         # always). A generation step's proposal is one of many, and the engine knows how
         # often such rounds place for its move (LateRounds); `went_on` says it was asked and
         # said yes, so the engine can count what came of it.
         self.go_on, self.went_on = go_on, False
+        # Samples drawn, and how many of them came before the rounds after the first.
+        self.samples = self.late_from = 0
         self.cache = SystemCache() if cache is None else cache
         # False: only directions and positive lengths are kept; no class ranges, fixed
         # lengths, tiles or crossing tests (the last resort of a figure, see place_side).
@@ -214,7 +216,6 @@ class Solver:
         if not free and not self.bridges:
             yield Placement({})
             return
-        cramped = False         # whether the last round ended with no room (_round_samples)
         for rnd in range(1, self.I + 1):
             rd = self._system(free)
             if rd is None:
@@ -222,22 +223,25 @@ class Solver:
             elif isinstance(rd, Rejection):
                 self._fail(rd)
             else:
-                was = cramped
-                cramped = yield from self._round_samples(free, rd)
-                if cramped and was and self.go_on is not None:
-                    # Two rounds in a row with no room: freeing more old vertices did not
-                    # make it. Whether the rounds after pay is the caller's to say.
-                    self.went_on = self.go_on()
-                    if not self.went_on:
-                        return
-            if rnd == self.I or not self._free_one(free):
+                yield from self._round_samples(free, rd)
+            if rnd == self.I:
+                return
+            if rnd == 1 and self.go_on is not None:
+                # The first round, the new part alone, did not place: whether freeing old
+                # vertices pays for this move is the caller's to say (LateRounds).
+                self.went_on = self.go_on()
+                if not self.went_on:
+                    return
+                self.late_from = self.samples
+            if not self._free_one(free):
                 return
 
     def _round_samples(self, free: list[int], rd: "_Round"):
-        """A round's samples (up to J), yielding each that passes; returns whether the round
-        ended because the part has no room while only these vertices move."""
+        """A round's samples (up to J), yielding each that passes; the round ends early when
+        the part has no room while only these vertices move."""
         f, last = 1.0, 0        # the way f last moved: −1 smaller, +1 larger
         for _ in range(1 if self.unique else self.J):
+            self.samples += 1
             pos = self._sample(free, rd, f)
             if pos is not None:
                 yield Placement(pos)
@@ -250,9 +254,8 @@ class Solver:
                 # further samples rarely pass (h-complex at 20,000 vertices: 16 % of first
                 # samples pass, 1-2.5 % from the sixth on), so the next round, which frees
                 # more, starts now.
-                return True
+                return
             f, last = g, way or last
-        return False
 
     def _free_one(self, free: list[int]) -> bool:
         """Free more old vertices for the next round. When a length failed (fixed or doomed
