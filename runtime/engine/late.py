@@ -23,7 +23,7 @@ seeds of 0-4; at WORSE = 2, at one.
 
 The record is not asked when the change lowers the cost's proportions (Engine._wanted): a
 part under its share is often one that is hard to place (a castle's gates), and without
-that the castle scene's gates fell to 0.77 of their share (median over seeds 0-11; 0.90
+that the castle scene's gates fell to 0.77 of their share (mean over seeds 0-11; 0.90
 before the record, 0.89 with it and the exemption). Over castle seeds 0-39 at the paper's N,
 one drawing lacks a face label both before the record (seed 13) and with it (seed 0).
 """
