@@ -18,8 +18,8 @@ the drawing as it changes. A proposal given up there leaves its iteration to a f
 proposal, which on average places sooner. Moves that place rarely but build what a scene's
 rare parts stand on keep their late rounds this way: with a plain trial of 100 samples
 instead of the prior, the castle's `r15` (a slope beside a block, 1 placement in 217 late
-samples) was cut off before its first placement, and the castle lacked its keep at two
-seeds of 0-4; at WORSE = 2, at one.
+samples) was cut off before its first placement, and the castle lacked its keep at three
+seeds of 0-4 (at two with WORSE = 16); with the prior and WORSE = 2, at one.
 
 The record is not asked when the change lowers the cost's proportions (Engine._wanted): a
 part under its share is often one that is hard to place (a castle's gates), and without
