@@ -249,8 +249,8 @@ class Engine:
         change = plan(host, move, match, self.schedule.spo)
         if host.pinned and not host.pinned.isdisjoint(change.removed):
             return Outcome(None, Rejection.MOVES_FRAME)
-        if use_cost:
-            after = self.stats(change)
+        after = self.stats(change) if use_cost else None
+        if after is not None:
             if after != screened:
                 delta = self.cost.value(after) - self.cost.value(self.stats())
                 if not metropolis_accepts(delta, self.temperature, float(self.rng.random())):
@@ -261,7 +261,7 @@ class Engine:
         center = (lambda: self._center(change)) if floating else (lambda: fixed)
         key = (move.rule.name, move.forward)
         solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
-                        self.systems, go_on=lambda: self._wanted(change, use_cost)
+                        self.systems, go_on=lambda: self._wanted(after)
                         or self.late.go_on(key))
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
@@ -287,13 +287,14 @@ class Engine:
             if solver.failures else Rejection.NO_PLACEMENT
         return Outcome(None, why)
 
-    def _wanted(self, change: Change, use_cost: bool) -> bool:
-        """Whether the cost wants `change` for the example's proportions (it lowers their
-        part of the cost): such a proposal goes on with its late rounds whatever its move's
-        record. A part under its share is often one that is hard to place (the castle's
-        gates need a gap of the right width), and only late rounds make room for it."""
+    def _wanted(self, after: Stats | None) -> bool:
+        """Whether the cost wants the change that gives the counts `after` (None: no cost)
+        for the example's proportions (it lowers their part of the cost): such a proposal
+        goes on with its late rounds whatever its move's record. A part under its share is
+        often one that is hard to place (the castle's gates need a gap of the right width),
+        and only late rounds make room for it."""
         c = self.cost
-        return use_cost and c.proportions(self.stats(change)) < c.proportions(self.stats())
+        return after is not None and c.proportions(after) < c.proportions(self.stats())
 
     def _spent(self, key, solver: Solver, placed: bool) -> None:
         late = solver.samples - solver.late_from if solver.went_on else 0

@@ -27,10 +27,8 @@ def pinv(M: np.ndarray, rcond: float = 1e-10) -> np.ndarray:
     m, n = M.shape
     if m == 0 or n == 0:
         return np.zeros((n, m))
-    qr, jpvt, tau, _, info = lapack.dgeqp3(np.array(M, dtype=float, order="F"))
+    qr, jpvt, tau, _, _ = lapack.dgeqp3(np.array(M, dtype=float, order="F"))
     d = np.abs(np.diagonal(qr))
-    if info != 0 or not np.isfinite(d).all():
-        return np.linalg.pinv(M, rcond=rcond)
     r = int(np.count_nonzero(d > rcond * d[0])) if d[0] > 0 else 0
     if r == 0:
         return np.zeros((n, m))
