@@ -98,9 +98,10 @@ class Solver:
         self.host, self.change, self.rng = host, change, rng
         # Asked when the first round did not place: whether to go on with the rest (None:
         # always). A generation step's proposal is one of many, and the engine knows how
-        # often such rounds place for its move (LateRounds); `went_on` says it was asked and
-        # said yes, so the engine can count what came of it.
-        self.go_on, self.went_on = go_on, False
+        # often such rounds place for its move (LateRounds); `went_on` is the answer (None:
+        # not asked), so the engine can count what came of it, and knows a proposal it cut
+        # short.
+        self.go_on, self.went_on = go_on, None
         # Samples drawn, and how many of them came before the rounds after the first.
         self.samples = self.late_from = 0
         self.cache = SystemCache() if cache is None else cache
