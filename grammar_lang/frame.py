@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 from . import boundary as bd
 from .diagnostics import Span, error
@@ -33,10 +34,16 @@ class Frame:
     corners: tuple[Corner, ...]
     start: Side | None = None     # what generation starts from when the sides cannot be bare
 
-    @property
+    # Cached: asked for every vertex of every sample (a frozen instance never changes).
+    @cached_property
     def box(self) -> tuple[float, float, float, float]:
         xs, ys = [c.x for c in self.corners], [c.y for c in self.corners]
         return min(xs), min(ys), max(xs), max(ys)
+
+    @cached_property
+    def rectangle(self) -> bool:
+        """Four corners on axis-parallel sides: inside its box is inside it."""
+        return len(self.corners) == 4 and self.axis_aligned
 
     @property
     def size(self) -> tuple[float, float]:
@@ -62,6 +69,8 @@ class Frame:
         x0, y0, x1, y1 = self.box
         if not (x0 + margin <= x <= x1 - margin and y0 + margin <= y <= y1 - margin):
             return False
+        if self.rectangle:
+            return True
         inside, n = False, len(self.corners)
         for k in range(n):
             a, b = self.corners[k], self.corners[(k + 1) % n]
