@@ -264,7 +264,7 @@ class Engine:
         key = (move.rule.name, move.forward)
         solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
                         self.systems, go_on=lambda: self._wanted(after)
-                        or self.late.go_on(key))
+                        or self.late.go_on(key), wanted=lambda: self._wanted(after))
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():

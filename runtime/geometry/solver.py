@@ -102,7 +102,8 @@ class Solver:
     def __init__(self, host: HostView, change: Change, rng: np.random.Generator,
                  center: Callable[[], Point], I: int = I_ROUNDS, J: int = J_SAMPLES,
                  floating: bool = False, cache: SystemCache | None = None,
-                 strict: bool = True, go_on: Callable[[], bool] | None = None):
+                 strict: bool = True, go_on: Callable[[], bool] | None = None,
+                 wanted: Callable[[], bool] | None = None):
         self.host, self.change, self.rng = host, change, rng
         # Asked when the first round did not place: whether to go on with the rest (None:
         # always). A generation step's proposal is one of many, and the engine knows how
@@ -110,6 +111,10 @@ class Solver:
         # not asked), so the engine can count what came of it, and knows a proposal it cut
         # short.
         self.go_on, self.went_on = go_on, None
+        # Asked with go_on: whether the caller's cost wants this change (a part under its
+        # share); then the later rounds repair their samples too (see _sample).
+        self.wanted = wanted
+        self.repair_late = False
         # Samples drawn, and how many of them came before the rounds after the first.
         self.samples = self.late_from = 0
         self.later = False       # in a round after the first
@@ -243,7 +248,9 @@ class Solver:
                 if not self.went_on:
                     return
                 self.late_from = self.samples
-            self.later = True
+            if not self.later:
+                self.later = True
+                self.repair_late = self.wanted is not None and self.wanted()
             if not self._free_one(free):
                 return
 
@@ -539,10 +546,12 @@ class Solver:
         x = target + fact.scale * fact.Mp.dot(rd.b - fact.A.dot(target))
         nF = len(free)
         drawn = x
-        # First rounds only: in later rounds, where old vertices move, repaired samples
-        # placed little and ran more samples per step (branches at 1,000 vertices: 3.88
-        # against 2.77 in the first round alone).
-        if self.strict and not self.later:
+        # First rounds only, unless the change is wanted: in later rounds, where old
+        # vertices move, repaired samples placed little and ran more samples per step
+        # (branches at 1,000 vertices: 3.88 against 2.77 in the first round alone); but a
+        # part the drawing lacks is often one that needs old vertices moved to fit (the
+        # castle's keep on a block top too narrow for it).
+        if self.strict and (not self.later or self.repair_late):
             x = repair(x, 2 * nF, fact.P_len, *rd.clip_box(self.tol))
         if rd.tiles and self.strict:
             x = self._snap_tiles(x, nF, rd)
