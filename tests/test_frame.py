@@ -482,8 +482,8 @@ def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
     seed 9 it had none until a structure stood on a stretch of ground was aimed where its
     footprint fits: the keep's, about 400 px wide, placed beside the first structure 3
     times in 30 when aimed anywhere along the stretch. At seed 18 it had none until a
-    wanted part's samples were repaired in its later rounds too: its 145 tries at a keep on
-    a block top failed on lengths, the block tops too narrow while they stood still.)"""
+    wanted part's samples were repaired (solver.repair): its 145 tries at a keep on a block
+    top failed on lengths.)"""
     from runtime.engine.costs import default_cost
     n = PAPER_RUNS[name][0]
     ex = load_example(ILLUSTRATIONS / f"{name}.gg")
