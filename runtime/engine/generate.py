@@ -292,9 +292,10 @@ class Engine:
     def _wanted(self, after: Stats | None) -> bool:
         """Whether the cost wants the change that gives the counts `after` (None: no cost)
         for the example's proportions (it lowers their part of the cost): such a proposal
-        goes on with its late rounds whatever its move's record. A part under its share is
-        often one that is hard to place (the castle's gates need a gap of the right width),
-        and only late rounds make room for it."""
+        goes on with its late rounds whatever its move's record, and its samples are repaired
+        (solver.repair). A part under its share is often one that is hard to place (the
+        castle's gates need a gap of the right width), and only late rounds make room for
+        it."""
         c = self.cost
         return after is not None and c.proportions(after) < c.proportions(self.stats())
 

@@ -4,28 +4,27 @@ Every edge's direction is fixed by its label, so for the free vertices F and eve
 touching them, `p_v − p_u − s_e d_e = 0` with the length s_e unknown: a linear system A x = b
 over positions and lengths, the fixed vertices moving to b. Its solutions are x̂ + K λ.
 
-A sample is drawn by projecting a random target onto that affine space: target lengths are drawn
-around the label's typical length in the example, within its class's range (or kept, for edges
-that already exist), so that a structure made in one move keeps its parts' proportions and its
-cycles close with every length positive; target positions are
-the place the change happens (or kept, for old vertices; a new free-standing component gets a
-fresh place for every sample); the projection is a weighted least
-squares step, so old vertices move least and new ones most. Projecting a random point onto the
-space samples it as the null-space form does, without forming K. A sample whose lengths leave
-their range is brought back into it by alternating projections (`repair`) where it can be,
-for a change the caller wants (a part under its share). Samples whose lengths still break their class (min/max, fixed,
-tile multiples, rigid), whose edges cross or touch others, or whose vertices coincide are
-rejected: J samples per system.
-A sample that crosses or touches old parts makes the next one SHRINK times smaller (target
-lengths and scatter), so that a change squeezed between old vertices finds room; any other
-failure (say, an edge of a triangle below its class's minimum) makes it larger again, up to
-the local scale; when that size turns back (crowded, then too short), the part has no room
+A sample is drawn by projecting a random target onto that affine space: target lengths are
+drawn around the label's typical length in the example, within its class's range (or kept, for
+edges that already exist), so that a structure made in one move keeps its parts' proportions
+and its cycles close with every length positive; target positions are the place the change
+happens (or kept, for old vertices; a new free-standing component gets a fresh place for every
+sample); the projection is a weighted least squares step, so old vertices move least and new
+ones most. Projecting a random point onto the space samples it as the null-space form does,
+without forming K. For a change the caller wants (a part under its share), a sample whose
+lengths leave their range is brought back into it by alternating projections (`repair`) where
+it can be. Samples whose lengths still break their class (min/max, fixed, tile multiples,
+rigid), whose edges cross or touch others, or whose vertices coincide are rejected: J samples
+per system. A sample that crosses or touches old parts makes the next one SHRINK times smaller
+(target lengths and scatter), so that a change squeezed between old vertices finds room; any
+other failure (say, an edge of a triangle below its class's minimum) makes it larger again, up
+to the local scale; when that size turns back (crowded, then too short), the part has no room
 and the round ends. When the system is inconsistent (over-constrained), fixes some length
-outside its class whatever the sample, or a round's samples fail, more old vertices are
-freed: those nearest the edge whose length failed, else one next to a free one: I rounds
-(fewer when the caller, asked through `go_on` after the first, says the rest rarely pay).
-New edges' drawn lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old
-vertices give way to a new part instead of squashing it.
+outside its class whatever the sample, or a round's samples fail, more old vertices are freed:
+those nearest the edge whose length failed, else one next to a free one: I rounds (fewer when
+the caller, asked through `go_on` after the first, says the rest rarely pay). New edges' drawn
+lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices give way to
+a new part instead of squashing it.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
