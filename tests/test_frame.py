@@ -481,9 +481,9 @@ def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
     altogether: its first structures were all keepless, and later the ground was full. At
     seed 9 it had none until a structure stood on a stretch of ground was aimed where its
     footprint fits: the keep's, about 400 px wide, placed beside the first structure 3
-    times in 30 when aimed anywhere along the stretch. At seed 18 it had none until a
-    wanted part's samples were repaired (solver.repair): its 145 tries at a keep on a block
-    top failed on lengths.)"""
+    times in 30 when aimed anywhere along the stretch. At seed 18 it had none when
+    every first-round sample had its lengths repaired, a version of solver.repair tried and
+    not kept: its 145 tries at a keep on a block top failed on lengths.)"""
     from runtime.engine.costs import default_cost
     n = PAPER_RUNS[name][0]
     ex = load_example(ILLUSTRATIONS / f"{name}.gg")

@@ -10,6 +10,7 @@ be undone and redone. The REPL drives the same engine one operation at a time (`
 
 from __future__ import annotations
 
+import functools
 import gc
 import math
 import time
@@ -262,9 +263,11 @@ class Engine:
         floating = self._floating(change)
         center = (lambda: self._center(change)) if floating else (lambda: fixed)
         key = (move.rule.name, move.forward)
+        # Asked by the solver at its first sample and again after its first round: once.
+        wanted = functools.cache(lambda: self._wanted(after))
         solver = Solver(host, change, self.rng, center, self.I, self.J, floating,
-                        self.systems, go_on=lambda: self._wanted(after)
-                        or self.late.go_on(key), wanted=lambda: self._wanted(after))
+                        self.systems, go_on=lambda: wanted() or self.late.go_on(key),
+                        wanted=wanted)
         region = [host.pos[v] for v in change.removed]
         region += [host.pos[v] for s0 in change.cut for v in (s0[0], host.link[s0[0]][s0[1]][0])]
         for placement in solver.placements():
@@ -379,8 +382,8 @@ class Engine:
                 stall += not out.cut_short
                 if stall >= MAX_STALL and iterations is None:
                     common = max(sorted(s.reasons), key=lambda k: s.reasons[k])
-                    s.stop = (f"stalled: {MAX_STALL} proposals in a row, tried in full, were rejected "
-                              f"(most often: {common})")
+                    s.stop = (f"stalled: {MAX_STALL} proposals in a row, tried in full, were "
+                              f"rejected (most often: {common})")
                     break
             if progress is not None and s.proposals % every == 0:
                 s.seconds = time.perf_counter() - t0

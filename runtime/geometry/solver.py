@@ -713,6 +713,7 @@ class _Round:
     hi_tol: list
     context: tuple | None = None     # what the crossing tests leave out (_planar_context)
     _ranges: dict = field(default_factory=dict)
+    _clip: tuple | None = None       # clip_box's, made once
 
     def targets_at(self, centre: Point) -> list:
         """The base coordinates, those without an aim at `centre`, then the known lengths
@@ -726,12 +727,12 @@ class _Round:
     def clip_box(self, tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Each length's range for `repair`: the test's, less a margin on each side (the
         margin is `repair`'s slack), so that a repaired length passes the test."""
-        box = self._ranges.get("clip")
+        box = self._clip
         if box is None:
             lo = np.array([max(lt, tol) for lt in self.lo_tol])
             hi = np.array(self.hi_tol, dtype=float)
             m = np.maximum(np.minimum(REPAIR_MARGIN * np.maximum(lo, 1.0), 0.25 * (hi - lo)), 0.0)
-            box = self._ranges["clip"] = (lo + m, hi - m, m)
+            box = self._clip = (lo + m, hi - m, m)
         return box
 
     def ranges(self, f: float) -> tuple[list, list, list]:
@@ -850,7 +851,7 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
 
 
 def repair(x: np.ndarray, n: int, P: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-           slack: np.ndarray | float = 0.0) -> np.ndarray:
+           slack: np.ndarray) -> np.ndarray:
     """A sample `x` of the system whose lengths (from index `n` on) are more than `slack`
     outside [lo, hi], brought into that range by alternating projections: the lengths
     clipped into the box, then projected back onto the system, until both hold. Both sets
