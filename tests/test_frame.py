@@ -470,12 +470,16 @@ PAPER_RUNS = {"castle": (4000, 80), "flowers": (2000, 42), "space-station": (400
               "village": (4000, 65)}
 
 
-@pytest.mark.parametrize("name, seed", [(name, PAPER_RUNS[name][1]) for name in NAMES]
-                         + [("castle", 2), ("castle", 9), ("castle", 18)])
+@pytest.mark.parametrize("name, seed", [(name, seed) for name in NAMES
+                                        for seed in (PAPER_RUNS[name][1], 0, 1, 2, 3, 4)]
+                         + [("castle", 9), ("castle", 18)])
 def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
-    """At the paper's N iterations and seed, with the default cost, the drawing holds every
-    face label and every edge class of the example, inside its frame, and passes the
-    verifier. (A change that let framed moves split once took the castle's keeps, windows
+    """At the paper's N iterations, at its seed and at seeds 0-4, with the default cost, the
+    drawing holds every face label and every edge class of the example, inside its frame,
+    and passes the verifier. (The castle at seed 0 had no keep until a wanted change's
+    lengths were repaired by pinning, solver.repair: alternating projections stalled on a
+    keep squeezed onto a block top, and the keep's tiles, rounded after, broke what they
+    had fitted. A change that let framed moves split once took the castle's keeps, windows
     and roofs away at seed 80: half its face labels; the shorter runs above still passed.
     At seed 2 the castle had no keep until the scene cost charged more for a part left out
     altogether: its first structures were all keepless, and later the ground was full. At
