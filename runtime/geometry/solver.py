@@ -16,11 +16,11 @@ lengths leave their range is brought back into it where it can be (`repair`: the
 system nearest the sample with the worst lengths pinned in range, one at a time, its tiles
 pinned at whole multiples). Samples whose lengths still break their class (min/max, fixed,
 tile multiples, rigid), whose edges cross or touch others, or whose vertices coincide are
-rejected: J samples per system. A sample that crosses or touches old parts makes the next one SHRINK times smaller
-(target lengths and scatter), so that a change squeezed between old vertices finds room; any
-other failure (say, an edge of a triangle below its class's minimum) makes it larger again, up
-to the local scale; when that size turns back (crowded, then too short), the part has no room
-and the round ends. When the system is inconsistent (over-constrained), fixes some length
+rejected: J samples per system. A sample that crosses or touches old parts makes the next one
+SHRINK times smaller (target lengths and scatter), so that a change squeezed between old
+vertices finds room; any other failure (say, an edge of a triangle below its class's minimum)
+makes it larger again, up to the local scale; when that size turns back (crowded, then too
+short), the part has no room and the round ends. When the system is inconsistent (over-constrained), fixes some length
 outside its class whatever the sample, or a round's samples fail, more old vertices are freed:
 those nearest the edge whose length failed, else one next to a free one: I rounds (fewer when
 the caller, asked through `go_on` after the first, says the rest rarely pay). New edges' drawn
@@ -813,7 +813,6 @@ class Factor:
             pinned = self._pinned[tiled] = (A2, pinv(A2))
         return pinned
 
-
     def project_pinned(self, x: np.ndarray, n: int, pins: dict[int, float]) -> np.ndarray | None:
         """The point of the system nearest its point `x`, in the projection's weighted norm,
         whose lengths `pins` (by edge index; lengths start at index `n`) have the values given;
@@ -929,6 +928,8 @@ def repair(x: np.ndarray, n: int, fact: "Factor", lo: np.ndarray, hi: np.ndarray
             if y is None:
                 return None
         lengths = y[n:]
+        if not len(lengths):
+            return y
         miss = np.maximum(lo - lengths, lengths - hi)
         if pins:
             miss[list(pins)] = 0.0
