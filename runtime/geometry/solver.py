@@ -14,18 +14,18 @@ ones most. Projecting a random point onto the space samples it as the null-space
 without forming K. For a change the caller wants (a part under its share), a sample whose
 lengths leave their range is brought back into it where it can be (`repair`: the point of the
 system nearest the sample with the worst lengths pinned in range, one at a time, its tiles
-pinned at whole multiples). Samples whose lengths still break their class (min/max, fixed,
-tile multiples, rigid), whose edges cross or touch others, or whose vertices coincide are
-rejected: J samples per system. A sample that crosses or touches old parts makes the next one
-SHRINK times smaller (target lengths and scatter), so that a change squeezed between old
-vertices finds room; any other failure (say, an edge of a triangle below its class's minimum)
-makes it larger again, up to the local scale; when that size turns back (crowded, then too
-short), the part has no room and the round ends. When the system is inconsistent (over-constrained), fixes some length
-outside its class whatever the sample, or a round's samples fail, more old vertices are freed:
-those nearest the edge whose length failed, else one next to a free one: I rounds (fewer when
-the caller, asked through `go_on` after the first, says the rest rarely pay). New edges' drawn
-lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old vertices give way to
-a new part instead of squashing it.
+pinned at whole multiples). Samples whose lengths still break their class (min/max, fixed, tile
+multiples, rigid), whose edges cross or touch others, or whose vertices coincide are rejected:
+J samples per system. A sample that crosses or touches old parts makes the next one SHRINK
+times smaller (target lengths and scatter), so that a change squeezed between old vertices
+finds room; any other failure (say, an edge of a triangle below its class's minimum) makes it
+larger again, up to the local scale; when that size turns back (crowded, then too short), the
+part has no room and the round ends. When the system is inconsistent (over-constrained), fixes
+some length outside its class whatever the sample, or a round's samples fail, more old vertices
+are freed: those nearest the edge whose length failed, else one next to a free one: I rounds
+(fewer when the caller, asked through `go_on` after the first, says the rest rarely pay). New
+edges' drawn lengths are stiffer than the old drawing (DRAWN_LENGTH), so that freed old
+vertices give way to a new part instead of squashing it.
 
 Only the changed neighbourhood enters the system and the spatial grid answers the crossing
 tests, so a step's cost does not grow with the drawing.
