@@ -551,15 +551,17 @@ class Solver:
         # 18 % and 14 % smaller at their N (seeds 0-4), its castle 20 % larger (measured
         # with the alternating projections this repair replaced). Not repaired, a sample
         # goes on as drawn: its tiles snapped, its lengths tested.
-        fitted = None
+        fitted = tiles = None
+        if rd.tiles and self.strict:
+            tiles = self._tile_lengths(x, nF, rd)
         if self.strict and rd.unrepaired < REPAIR_TRIES and self._repairing():
-            pins = dict(zip(rd.tiled, self._tile_lengths(x, nF, rd))) if rd.tiles else {}
+            pins = dict(zip(rd.tiled, tiles)) if tiles else {}
             fitted = repair(x, 2 * nF, fact, *rd.clip_box(self.tol), pins)
             rd.unrepaired = 0 if fitted is not None else rd.unrepaired + 1
         if fitted is not None:
             x = fitted
-        elif rd.tiles and self.strict:
-            x = self._snap_tiles(x, nF, rd)
+        elif tiles:
+            x = self._snap_tiles(x, nF, rd, tiles)
             if x is None:
                 self._fail(Rejection.TILES)
                 return None
@@ -614,10 +616,9 @@ class Solver:
             vals.append(k * tile)
         return vals
 
-    def _snap_tiles(self, x, nF, rd: "_Round"):
-        """Tiled lengths rounded to whole multiples (`_tile_lengths`), and the system solved
-        again with them pinned."""
-        vals = self._tile_lengths(x, nF, rd)
+    def _snap_tiles(self, x, nF, rd: "_Round", vals: list[float]):
+        """The system solved again with its tiled lengths pinned at `vals` (the sample's,
+        rounded to whole multiples: `_tile_lengths`)."""
         A2, A2p = rd.fact.pinned_system(rd.tiled, nF)
         b2 = np.concatenate([rd.b, vals])
         # The nearest point to the sample that also meets the pins.
