@@ -15,9 +15,9 @@ vertices, the frame aside.
 
 By default each drawing fills the example's own frame (1540 × 780 px). `--paper-extent`
 fills the extent of the original settings instead (the illustrations' README: castle
-1600 × 800, station and flowers 2040 × 800 and 2040 × 1200, village 2720 × 1600), where the
-frame's start can be placed there; the village's start (its whole example) cannot, so it
-stays in its own frame and the table says so.
+1600 × 800, station and flowers 2040 × 800 and 2040 × 1200, village 2720 × 1600). A start
+that cannot be placed at that extent stays in its own frame, and the table's frame column
+says so.
 
     .venv/bin/python benchmarks/paper.py                       # the paper's N
     .venv/bin/python benchmarks/paper.py --iterations 500      # a quick look

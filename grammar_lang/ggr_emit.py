@@ -129,7 +129,8 @@ def _header(h: Header, names: list[str]) -> list[str]:
         parts = [f"class {name(c.name)}"]
         for key, value in (("min", c.min_length), ("max", c.max_length), ("fixed", c.fixed),
                            ("tile", c.tile)):
-            if value is not None:
+            # An unbounded max (a border class's default) is written as none given.
+            if value is not None and math.isfinite(value):
                 parts.append(f"{key}={num(value)}")
         parts += [flag for flag, on in (("rigid", c.rigid), ("border", c.border)) if on]
         out.append(" ".join(parts))

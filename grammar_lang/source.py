@@ -9,6 +9,7 @@ All coordinates are in the y-up frame.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from .diagnostics import Span
@@ -45,6 +46,17 @@ class EdgeClass:
     # units, which is the same spirit (scale-free) without its fixed 40 px grid.
     DEFAULT_MIN = 0.1
     DEFAULT_MAX = 4.0
+
+    def __post_init__(self):
+        # A border class has no longest length unless the user gives one: its edges are the
+        # border of the space, as long as the extent asked for (`ggrun --extent`), and the
+        # stretches of ground between structures are as long as the room left. Bounded by
+        # the example's longest, a frame wider than the example's had a side the verifier
+        # refused, and the village's start could not be placed at the paper's extent.
+        # Written here, the class reads the same from a `.gg`, a `.ggr` (which leaves an
+        # infinite max out) and code.
+        if self.border and self.max_length is None:
+            object.__setattr__(self, "max_length", math.inf)
 
     def resolved(self, unit: float, seen: tuple[float, float] | None = None) -> "EdgeClass":
         """Concrete limits. They also admit `seen`, the shortest and longest edges of this

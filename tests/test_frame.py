@@ -247,6 +247,42 @@ def test_an_extent_stretches_the_frame(castle):
     eng.run(20)
     x0, y0, x1, y1 = eng.host.frame.box
     assert all(x0 - 1e-6 <= eng.host.pos[v][0] <= x1 + 1e-6 for v in eng.host.vertices())
+    # Its top side is 2,400 long, beyond the example's longest border edge (1,540).
+    assert check_drawing(castle[0], eng.host.to_drawing()) == []
+
+
+# The original settings' extents (the illustrations' README), wider and taller than the
+# examples' own 1,540 × 780 frames.
+PAPER_EXTENTS = {"castle": (1600.0, 800.0), "village": (2720.0, 1600.0),
+                 "flowers": (2040.0, 1200.0), "space-station": (2040.0, 800.0)}
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_illustration_grows_verified_at_the_papers_extent(name):
+    """A border class has no longest length unless the user gives one: the frame's sides are
+    as long as the extent asks, and the village's start, whose strips run from side to side,
+    is placed at 2,720 × 1,600 (bounded by its example's longest border edge, it was not)."""
+    ex, g = _illustration(name)
+    eng = Engine(g, seed=0, extent=PAPER_EXTENTS[name])
+    assert eng.host.frame.size == PAPER_EXTENTS[name]
+    eng.run(60)
+    x0, y0, x1, y1 = eng.host.frame.box
+    assert all(eng.host.frame.contains(*eng.host.pos[v]) or v in eng.host.pinned
+               or eng.host.prim[v] in eng.host.on_border for v in eng.host.vertices())
+    assert check_drawing(ex, eng.host.to_drawing()) == []
+
+
+def test_a_border_class_has_no_longest_length_unless_given_one():
+    from grammar_lang.source import EdgeClass
+    assert EdgeClass("frame", border=True).max_length == math.inf
+    assert EdgeClass("frame", max_length=900.0, border=True).max_length == 900.0
+    assert EdgeClass("0").resolved(40.0).max_length == 160.0
+    assert EdgeClass("frame", border=True).resolved(40.0, (4.0, 1540.0)).max_length == math.inf
+    # The rule file leaves an infinite max out, and reads it back the same.
+    ex, g = _illustration("village")
+    text = emit_ggr(g)
+    assert "max=inf" not in text
+    assert parse_ggr(text).header.classes == g.header.classes
 
 
 def test_costs_take_the_names_of_the_example():

@@ -609,7 +609,8 @@ class Solver:
         vals = []
         for e, tile in rd.tiles:
             k = max(1, round(float(x[2 * nF + e]) / tile))
-            k_lo, k_hi = math.ceil(rd.lo[e] / tile - 1e-9), math.floor(rd.hi[e] / tile + 1e-9)
+            k_lo = math.ceil(rd.lo[e] / tile - 1e-9)
+            k_hi = math.floor(rd.hi[e] / tile + 1e-9) if rd.hi[e] < math.inf else max(k, k_lo)
             if max(1, k_lo) <= k_hi:
                 k = min(max(k, k_lo), k_hi)
             vals.append(k * tile)
@@ -778,7 +779,10 @@ class _Round:
                 a = a if a > lo else lo
                 bb = bb if bb < hi else hi
                 if a > bb:
-                    a, bb = (lo, hi) if f == 1.0 or hi < a else (lo, lo)
+                    # The whole range, as wide as a usual draw where it has no end (a border
+                    # class's).
+                    a, bb = (lo, hi if hi < math.inf else lo * _HIGH / _LOW) \
+                        if f == 1.0 or hi < a else (lo, lo)
                 los.append(a)
                 his.append(bb)
                 widths.append(bb - a)
