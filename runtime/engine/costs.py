@@ -9,8 +9,10 @@ Built in (`--cost NAME[:ARG[:ARG]]`):
   N − n below N and (n − N)/4 above;
 - `scene[:N]`: `size[:N]` plus the example's proportions of face labels and of bare lines
   (`SceneCost`);
-- `density:D`: about D vertices per unit² of the drawing's bounding box;
-- `label:NAME[:F]`: edges of label NAME make up a fraction F (default 0.5) of all edges;
+- `density:D`: about D vertices per unit² of the frame's area; without a frame, `size` plus
+  D vertices per unit² of the drawing's bounding box;
+- `label:NAME[:F]`: `size` plus edges of label NAME making up a fraction F (default 0.5) of
+  all edges;
 - `none`: accept every placeable proposal.
 
 The default is `scene` with N = steps: `size` plus the example's proportions (see
@@ -82,11 +84,19 @@ class SizeCost:
 
 @dataclass(frozen=True)
 class DensityCost:
+    """About `per_unit2` vertices per unit² of the drawing's box: a frame's, in a scene, which
+    sets how many; without a frame, `size` sets how many and the density how far apart they
+    stand. Measured alone against a box that shrinks with the drawing, the empty drawing, with
+    no area, met any density exactly: 22 of the 31 corpus examples ended empty at
+    `density:0.3` (150 steps)."""
+
     per_unit2: float
+    size: SizeCost | None = None
     name: str = "density"
 
     def value(self, s: Stats) -> float:
-        return abs(s.vertices - self.per_unit2 * s.area)
+        off = abs(s.vertices - self.per_unit2 * s.area)
+        return off if self.size is None else off + self.size.value(s)
 
     def proportions(self, s: Stats) -> float:
         return 0.0
@@ -94,15 +104,20 @@ class DensityCost:
 
 @dataclass(frozen=True)
 class LabelCost:
+    """`size`, plus the edges of `labels` held at `fraction` of all edges. The share alone
+    is met by the empty drawing: `examples/house.gg` at `label:wall:0.5` ended empty."""
+
     labels: tuple[int, ...]      # the edge labels counted together
     fraction: float
+    size: SizeCost | None = None
     name: str = "label"
 
     def value(self, s: Stats) -> float:
-        return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
+        off = self.proportions(s)
+        return off if self.size is None else off + self.size.value(s)
 
     def proportions(self, s: Stats) -> float:
-        return self.value(s)
+        return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
 
 
 @dataclass(frozen=True)
@@ -209,8 +224,10 @@ def parse_cost(spec: str | None, labels, default_size: int, header=None) -> Cost
     makers: dict[str, Callable[[list[str]], Cost]] = {
         "none": lambda a: NoCost(),
         "size": lambda a: SizeCost(_int(a[0], spec) if a else default_size),
-        "density": lambda a: DensityCost(_float(a[0], spec)),
-        "label": lambda a: _label(a, labels, spec),
+        "density": lambda a: DensityCost(
+            _float(a[0], spec),
+            None if header is not None and header.frame is not None else SizeCost(default_size)),
+        "label": lambda a: _label(a, labels, spec, default_size),
         "scene": lambda a: _scene(header, _int(a[0], spec) if a else default_size),
     }
     if name not in makers:
@@ -230,7 +247,7 @@ def parse_cost(spec: str | None, labels, default_size: int, header=None) -> Cost
     return makers[name](args)
 
 
-def _label(args: list[str], labels, spec: str) -> Cost:
+def _label(args: list[str], labels, spec: str, size: int) -> Cost:
     """`label:NAME[:F]`: the edges of edge label NAME, or of edge class NAME, or beside a face
     of label NAME (the names the user gave in the .gg), make up a fraction F of all edges."""
     name = args[0]
@@ -249,7 +266,7 @@ def _label(args: list[str], labels, spec: str) -> Cost:
     f = _float(args[1], spec) if len(args) > 1 else 0.5
     if not 0 <= f <= 1:
         raise error(f"--cost {spec}: the fraction must be between 0 and 1")
-    return LabelCost(tuple(chosen), f)
+    return LabelCost(tuple(chosen), f, SizeCost(size))
 
 
 def _scene(header, n: int) -> Cost:

@@ -1,0 +1,70 @@
+"""No cost collapses a drawing to nothing (issue "Scenes"): each named cost keeps a run
+growing, with or without a frame, and what it draws passes the verifier."""
+
+import functools
+from pathlib import Path
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from compiler.infer import compile_example
+from grammar_lang.loader import load_example
+from runtime.engine.costs import DensityCost, LabelCost, SizeCost, Stats, parse_cost
+from runtime.engine.generate import Engine
+from runtime.verifier import check_drawing
+
+from conftest import CORPUS
+
+ROOT = Path(__file__).resolve().parent.parent
+# Unframed corpus drawings of loose pieces, shipped examples with and without a frame.
+PATHS = {"angle": CORPUS / "angle.svg", "square-filled": CORPUS / "square-filled.svg",
+         "house": ROOT / "examples" / "house.gg", "corners": ROOT / "examples" / "corners.gg",
+         "castle-scene": ROOT / "examples" / "castle-scene.gg"}
+
+
+@functools.lru_cache(maxsize=None)
+def _compiled(name):
+    ex = load_example(PATHS[name])
+    return ex, compile_example(ex).grammar
+
+
+def _a_name(ex) -> str:
+    """A face label of the example, or where it has none (loose lines) an edge label."""
+    faces = [f for l in ex.labels for f in (l.left, l.right) if f != ex.exterior]
+    return faces[0] if faces else ex.labels[0].name
+
+
+@pytest.mark.parametrize("name", sorted(PATHS))
+@pytest.mark.parametrize("spec", ["density:0.3", "density:0.02", "label:NAME:0.5", "scene",
+                                  "size"])
+def test_no_cost_collapses_the_drawing(name, spec):
+    ex, g = _compiled(name)
+    cost = parse_cost(spec.replace("NAME", _a_name(ex)), g.header.labels, 150, g.header)
+    eng = Engine(g, seed=3, cost=cost)
+    eng.run(150)
+    framed = g.header.frame is not None
+    # More than the frame alone, and, unframed, at least one copy of the example's size.
+    least = len(g.header.frame.corners) + 1 if framed else min(
+        10, sum(p.count for p in g.header.primitives))
+    assert len(eng.host) >= least, f"{spec} left {len(eng.host)} vertices"
+    assert check_drawing(ex, eng.host.to_drawing()) == []
+
+
+def _stats(n: int, area: float, counts=(0,), edges: int = 0) -> Stats:
+    return Stats(n, edges, tuple(counts), area)
+
+
+@given(st.floats(0.001, 10.0), st.integers(1, 5000))
+def test_unframed_density_is_not_met_by_the_empty_drawing(d, n):
+    """Without a frame the box shrinks with the drawing: the size term is what keeps the
+    empty drawing (no vertices, no area) from meeting the density exactly."""
+    cost = DensityCost(d, SizeCost(n))
+    assert cost.value(_stats(n, n / d)) < cost.value(_stats(0, 0.0))
+
+
+@given(st.floats(0.0, 1.0), st.integers(2, 5000))
+def test_a_label_share_is_not_met_by_the_empty_drawing(f, n):
+    cost = LabelCost((0,), f, SizeCost(n))
+    held = round(f * n)
+    assert cost.value(_stats(n, 1.0, (held,), n)) < cost.value(_stats(0, 0.0))
