@@ -33,6 +33,7 @@ class Scene:
     iterations: int     # the paper's N
     seed: int
     about: str
+    extent: str | None = None     # `ggrun --extent`; None: the example's own frame
 
 
 SCENES = (
@@ -55,6 +56,9 @@ SCENES = (
     Scene("space-station", ILLUSTRATIONS / "space-station.gg", 3700, 22,
           "the paper's Fig. 9b space station"),
     Scene("village", ILLUSTRATIONS / "village.gg", 4200, 65, "the paper's Fig. 9g village"),
+    Scene("village-paper-extent", ILLUSTRATIONS / "village.gg", 4200, 65,
+          "the paper's Fig. 9g village at the original settings' extent, 2,720 × 1,600 (68 × 40 "
+          "cells of 40 px; the example's own frame is 1,540 × 780)", "2720x1600"),
 )
 
 
@@ -80,8 +84,9 @@ def draw_scene(s: Scene, out: Path, quick: bool, page_dir: Path) -> list[str]:
     cells = [("the example, as read", example.name, "")]
     for n in ((40, 80) if quick else (s.iterations // 4, s.iterations)):
         png = out / f"{s.name}-{n}.png"
+        extent = ["--extent", s.extent] if s.extent else []
         res = tool(["report.ggrun", str(s.source), "--iterations", str(n), "--seed",
-                    str(s.seed), "--out", str(png), "--width", "800"])
+                    str(s.seed), "--out", str(png), "--width", "800", *extent])
         cells.append((f"{n:,} iterations", png.name if png.exists() else "", summary(res)))
     row += ["| " + " | ".join(c[0] for c in cells) + " |",
             "|" + "---|" * len(cells),
