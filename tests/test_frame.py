@@ -621,3 +621,17 @@ def castle_stands(castle):
     stands = [mv for mv in eng.moves() if mv.rule.name.startswith("stand") and not mv.forward]
     assert stands
     return eng, stands
+
+
+def test_an_extent_a_bounded_border_class_cannot_span_names_that_class():
+    """examples/space-station.gg bounds the frame sides between its trusses (class `side`,
+    240 to 400): a frame half as tall again cannot be placed, and the error points at the
+    class that refuses it, in the file that declares it."""
+    ex, g = _framed("space-station.gg")
+    w, h = g.header.frame.size
+    with pytest.raises(UserError) as info:
+        Engine(g, seed=1, extent=(w, 1.5 * h))
+    d = info.value.diagnostics[0]
+    assert "class side (240 to 400 long)" in d.message
+    assert d.span is not None and d.span.file.endswith("space-station.gg")
+    assert "class side" in d.render() and "^" in d.render()

@@ -9,7 +9,8 @@ around the corners.
 
 from __future__ import annotations
 
-from grammar_lang.diagnostics import error
+from grammar_lang.diagnostics import UserError, error
+from grammar_lang.fileio import read_text
 from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, slot_towards
 
 from .change import HostView
@@ -88,19 +89,46 @@ def _place_start(host: HostView, frame: Frame, corner_ids: list[int], rng) -> No
     change = Change(None, None, (), tuple(new), glue, (), partner)
     x0, y0, x1, y1 = frame.box
     rng = rng if rng is not None else np.random.default_rng(0)
+    blamed: dict[int, int] = {}
     for _ in range(START_TRIES):
         solver = Solver(host, change, rng, lambda: ((x0 + x1) / 2, (y0 + y1) / 2))
         pos = next((p.positions for p in solver.placements()), None)
         if pos is not None:
             break
+        for lab, n in solver.blamed.items():
+            blamed[lab] = blamed.get(lab, 0) + n
     else:
+        what, span = _what_did_not_fit(host, blamed)
         raise error("the frame's start (the example's frame with what touches it) could not be "
-                    f"placed in a {x1 - x0:g} × {y1 - y0:g} frame", None,
-                    "give an --extent closer to the example's own frame")
+                    f"placed in a {x1 - x0:g} × {y1 - y0:g} frame" + what, span,
+                    "give an --extent closer to the example's own frame, or widen that class",
+                    source=_text_at(span))
     for v, p in new:
         host.add_vertex(v, p, pos[v])
     for a, b in glue:
         host.glue(a, b)
+
+
+def _what_did_not_fit(host: HostView, blamed: dict[int, int]):
+    """The class whose lengths failed most often, with its range, and where it is declared:
+    what the extent asks too much of (a frame's side of a class the example bounds)."""
+    if not blamed:
+        return "", None
+    lab = max(sorted(blamed), key=blamed.get)
+    lo, hi = host.t.lengths[lab][:2]
+    name = host.header.labels[lab].cls
+    span = next((c.span for c in host.header.classes if c.name == name), None)
+    return (f": edges of class {name} ({lo:g} to {hi:g} long) could not take the lengths "
+            "it asks for", span)
+
+
+def _text_at(span) -> str | None:
+    """The text of the file a span is in, for the error's excerpt; None when it cannot be
+    read (a rule file given as text, a file since moved)."""
+    try:
+        return read_text(span.file) if span is not None else None
+    except UserError:
+        return None
 
 
 def _counter_clockwise(frame: Frame) -> bool:

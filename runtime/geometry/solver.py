@@ -139,6 +139,7 @@ class Solver:
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.culprits: dict[tuple[int, int], int] = {}
+        self.blamed: dict[int, int] = {}        # edge label → failed lengths, for messages
         self._label_bounds: dict[int, tuple] = {}       # see _bounds_of
         self.tol = min(1e-7 * host.t.unit, LENGTH_NOISE)
         self.unique = False
@@ -225,6 +226,7 @@ class Solver:
         """Count a failed length against its edge: the next round frees what holds it."""
         key = (edge[0], edge[2])
         self.culprits[key] = self.culprits.get(key, 0) + 1
+        self.blamed[edge[-1]] = self.blamed.get(edge[-1], 0) + 1
 
     def placements(self) -> Iterator[Placement]:
         """Candidate placements that pass every local test, at most I·J of them."""
