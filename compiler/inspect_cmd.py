@@ -69,7 +69,9 @@ def as_json(ex: Example) -> dict:
         "exterior": ex.exterior,
         "face_labels": list(ex.face_labels),
         "unit": ex.unit,
-        "classes": [{"name": c.name, "min_length": c.min_length, "max_length": c.max_length if math.isfinite(c.max_length) else None,
+        # JSON has no infinity: a border class's unbounded max is written as none.
+        "classes": [{"name": c.name, "min_length": c.min_length,
+                     "max_length": c.max_length if math.isfinite(c.max_length) else None,
                      "fixed": c.fixed, "tile": c.tile, "rigid": c.rigid} for c in ex.classes],
         "edge_labels": [{"name": l.name, "angle": l.angle, "left": l.left, "right": l.right,
                          "class": l.cls, "length": l.length} for l in ex.labels],

@@ -248,8 +248,9 @@ def parse_cost(spec: str | None, labels, default_size: int, header=None) -> Cost
 
 
 def _label(args: list[str], labels, spec: str, size: int) -> Cost:
-    """`label:NAME[:F]`: the edges of edge label NAME, or of edge class NAME, or beside a face
-    of label NAME (the names the user gave in the .gg), make up a fraction F of all edges."""
+    """`label:NAME[:F]`: `size` towards `size` vertices, and the edges of edge label NAME, or
+    of edge class NAME, or beside a face of label NAME (the names the user gave in the .gg),
+    making up a fraction F of all edges."""
     name = args[0]
     groups = {
         "edge label": [k for k, l in enumerate(labels) if l.name == name],

@@ -9,7 +9,7 @@ around the corners.
 
 from __future__ import annotations
 
-from grammar_lang.diagnostics import UserError, error
+from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import read_text
 from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, slot_towards
 
@@ -109,7 +109,7 @@ def _place_start(host: HostView, frame: Frame, corner_ids: list[int], rng) -> No
         host.glue(a, b)
 
 
-def _what_did_not_fit(host: HostView, blamed: dict[int, int]):
+def _what_did_not_fit(host: HostView, blamed: dict[int, int]) -> tuple[str, Span | None]:
     """The class whose lengths failed most often, with its range, and where it is declared:
     what the extent asks too much of (a frame's side of a class the example bounds)."""
     if not blamed:
@@ -122,7 +122,7 @@ def _what_did_not_fit(host: HostView, blamed: dict[int, int]):
             "it asks for", span)
 
 
-def _text_at(span) -> str | None:
+def _text_at(span: Span | None) -> str | None:
     """The text of the file a span is in, for the error's excerpt; None when it cannot be
     read (a rule file given as text, a file since moved)."""
     try:
