@@ -266,9 +266,7 @@ def test_every_illustration_grows_verified_at_the_papers_extent(name):
     eng = Engine(g, seed=0, extent=PAPER_EXTENTS[name])
     assert eng.host.frame.size == PAPER_EXTENTS[name]
     eng.run(60)
-    x0, y0, x1, y1 = eng.host.frame.box
-    assert all(eng.host.frame.contains(*eng.host.pos[v]) or v in eng.host.pinned
-               or eng.host.prim[v] in eng.host.on_border for v in eng.host.vertices())
+    assert_inside_its_frame(eng.host, eng.host.frame)
     assert check_drawing(ex, eng.host.to_drawing()) == []
 
 
