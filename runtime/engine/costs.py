@@ -91,12 +91,11 @@ class DensityCost:
     `density:0.3` (150 steps)."""
 
     per_unit2: float
-    size: SizeCost | None = None
+    size: SizeCost | NoCost = NoCost()      # NoCost: the frame's area sets how many
     name: str = "density"
 
     def value(self, s: Stats) -> float:
-        off = abs(s.vertices - self.per_unit2 * s.area)
-        return off if self.size is None else off + self.size.value(s)
+        return abs(s.vertices - self.per_unit2 * s.area) + self.size.value(s)
 
     def proportions(self, s: Stats) -> float:
         return 0.0
@@ -109,12 +108,11 @@ class LabelCost:
 
     labels: tuple[int, ...]      # the edge labels counted together
     fraction: float
-    size: SizeCost | None = None
+    size: SizeCost | NoCost = NoCost()
     name: str = "label"
 
     def value(self, s: Stats) -> float:
-        off = self.proportions(s)
-        return off if self.size is None else off + self.size.value(s)
+        return self.size.value(s) + self.proportions(s)
 
     def proportions(self, s: Stats) -> float:
         return abs(sum(s.label_count[k] for k in self.labels) - self.fraction * s.edges)
@@ -226,7 +224,8 @@ def parse_cost(spec: str | None, labels, default_size: int, header=None) -> Cost
         "size": lambda a: SizeCost(_int(a[0], spec) if a else default_size),
         "density": lambda a: DensityCost(
             _float(a[0], spec),
-            None if header is not None and header.frame is not None else SizeCost(default_size)),
+            NoCost() if header is not None and header.frame is not None
+            else SizeCost(default_size)),
         "label": lambda a: _label(a, labels, spec, default_size),
         "scene": lambda a: _scene(header, _int(a[0], spec) if a else default_size),
     }
