@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import gc
 import json
+import os
 import resource
 import subprocess
 import sys
@@ -66,7 +67,7 @@ def measure(path: str, size: int, window: int, seed: int, profile: bool = False)
     if profiler is not None:
         import pstats
         profiler.disable()
-        pstats.Stats(profiler, stream=sys.stderr).sort_stats("tottime").print_stats(30)
+        pstats.Stats(profiler, stream=sys.stderr).sort_stats(os.environ.get("GG_SORT","tottime")).print_stats(40)
     return {"example": Path(path).name, "target": size, "vertices": len(engine.host),
             "grow_steps": grow.applied, "grow_s": grown,
             "applied": s.applied, "proposals": s.proposals,

@@ -162,7 +162,7 @@ class _Resolver:
         if frame is not None and BORDER_CLASS not in classes:
             classes[BORDER_CLASS] = EdgeClass(BORDER_CLASS, border=True, span=frame.span)
         self.class_names = set(classes) | {DEFAULT_CLASS}
-        paint, prims, decos = [], [], []
+        paint, prims, decos, drawn = [], [], [], []
         for stmt, unit in self.flat:
             if isinstance(stmt, A.Face) and (stmt.colour is not None or stmt.props):
                 decos.append((unit, self._face_decoration(stmt, unit)))
@@ -177,7 +177,7 @@ class _Resolver:
             elif isinstance(stmt, A.ShapeFrom):
                 svg = d.svg[id(stmt)]
                 paint.extend(svg.paint)
-                decos.extend((unit, deco) for deco in svg.decorations)
+                drawn.extend((unit, deco) for deco in svg.decorations)
             elif isinstance(stmt, A.Decorate):
                 decos.append((unit, self._decoration(stmt, unit)))
         if paint and prims:
@@ -199,7 +199,8 @@ class _Resolver:
             options=self._options(), text=root.text,
             # Later decorations override earlier ones, so an importing file's come after its
             # imports' wherever its `import` lines are (a stable sort keeps file order).
-            decorations=[deco for unit, deco in sorted(decos, key=lambda t: -t[0].depth)])
+            decorations=[deco for unit, deco in sorted(_undecorated(drawn, decos) + decos,
+                                                       key=lambda t: -t[0].depth)])
 
     def _unit_of(self, table: str, name: str) -> Unit:
         return self.defs.origin[(table, name)][0]
@@ -402,6 +403,15 @@ class _Resolver:
         props = S.check_block(stmt.props, S.DECORATIONS[kind], f"{kind} decoration",
                               self.defs.palette, unit.base, unit.text)
         return Decoration(kind, name, tuple(props.items()), span=stmt.span)
+
+
+def _undecorated(drawn: list, decos: list) -> list:
+    """The colours a drawing was painted in (`svg_import`), less those the user sets: a
+    decoration that colours a label or class, or all of them (`*`), beats the drawing's."""
+    prop = {"face": "fill", "edge": "stroke"}
+    set_by_user = {(d.kind, d.target) for _, d in decos if prop.get(d.kind) in dict(d.props)}
+    return [(unit, d) for unit, d in drawn
+            if (d.kind, d.target) not in set_by_user and (d.kind, "*") not in set_by_user]
 
 
 def _renamed(svg: ExampleSource, mapping: dict[str, str]) -> ExampleSource:

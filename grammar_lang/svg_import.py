@@ -22,7 +22,8 @@ from defusedxml import sax as defused_sax
 from .diagnostics import Span, UserError, error
 from . import limits
 from .fileio import read_text
-from .source import DEFAULT_CLASS, MAX_COORDINATE, EdgeClass, ExampleSource, Region, Stroke
+from .source import (DEFAULT_CLASS, MAX_COORDINATE, Decoration, EdgeClass, ExampleSource, Region,
+                     Stroke)
 from .svg_colors import normalize_color
 from .svg_paths import (FLATTEN_HINT, IDENTITY, SvgValueError, apply, parse_length,
                         parse_path, parse_points, parse_transform)
@@ -162,6 +163,10 @@ class _Importer:
         self.paint: list = []
         self.face_labels: dict[str, Span | None] = {}
         self.classes: dict[str, EdgeClass] = {}
+        # The colours that named labels and classes were painted with: (kind, name) → colour
+        # → count. See `drawn_colours`.
+        self.painted: dict[tuple[str, str], dict[str, int]] = {}
+        self.spans: dict[tuple[str, str], Span] = {}
         self.root: _Node | None = None
 
     # --- places ---------------------------------------------------------------------------
@@ -343,15 +348,35 @@ class _Importer:
                 raise self.fail(node, "gradient or pattern fill without a data-label",
                                 "give the shape a data-label attribute, or a flat fill colour")
             self.face_labels.setdefault(label, span)
+            self.note_colour("face", label, fill, span)
             self.paint.append(Region(tuple(r for r, _ in rings), label,
                                      style.get("fill-rule", "").lower() == "evenodd", span))
             # The outline of a region is an edge of the default class.
             self.classes.setdefault(DEFAULT_CLASS, EdgeClass(DEFAULT_CLASS, span=span))
             if stroke == DEFAULT_CLASS:
                 return  # the region's outline already is a default-class edge
+        self.note_colour("edge", stroke, self.colour(node, style, "stroke"), span)
         for points, closed in rings:
             self.paint.append(Stroke(points, closed, stroke, span))
         self.classes.setdefault(stroke, EdgeClass(stroke, span=span))
+
+    def note_colour(self, kind: str, name: str, colour: str | None, span: Span) -> None:
+        """Count `colour` for a label or class named apart from its colour (`data-label`,
+        `data-class`): one named by its colour is drawn in it already."""
+        if colour is not None and colour != "url" and colour != name:
+            counts = self.painted.setdefault((kind, name), {})
+            counts[colour] = counts.get(colour, 0) + 1
+            self.spans.setdefault((kind, name), span)
+
+    def drawn_colours(self) -> list[Decoration]:
+        """A decoration per named label and class giving the colour it was drawn in (the
+        commonest; the first drawn among equals), so that generated drawings look like the
+        example: a flower's green stems stay green. `gg_resolve` drops one the user's own
+        decorations colour."""
+        prop = {"face": "fill", "edge": "stroke"}
+        return [Decoration(kind, name, ((prop[kind], max(counts, key=counts.get)),),
+                           span=self.spans[(kind, name)])
+                for (kind, name), counts in self.painted.items()]
 
     def stroke_class(self, node: _Node, style: dict[str, str]) -> str:
         if style.get("data-class"):
@@ -397,4 +422,4 @@ def import_svg(path: str | Path, text: str | None = None) -> ExampleSource:
     classes = dict(sorted(importer.classes.items()))
     return ExampleSource(path=file, name=title or Path(file).stem,
                          face_labels=importer.face_labels, paint=importer.paint,
-                         classes=classes, text=text)
+                         classes=classes, decorations=importer.drawn_colours(), text=text)

@@ -341,3 +341,22 @@ def test_data_class_on_a_filled_shape_classes_its_outline():
     graph = build_planar_graph(load('<rect width="4" height="4" fill="#c0f0ff" stroke="#000" '
                                     'data-class="wall"/>'))
     assert {e[4] for e in graph.edges} == {"wall"}
+
+
+def test_named_labels_and_classes_keep_the_colours_they_were_drawn_in():
+    # Named apart from their colours (data-label, data-class), a label and a class keep the
+    # drawing's colours as decorations: the commonest, the first drawn among equals.
+    src = load('<rect width="4" height="4" fill="#c0f0ff" data-label="sky"/>'
+               '<line x2="4" stroke="#00a000" data-class="stem"/>'
+               '<line y2="4" stroke="#00a000" data-class="stem"/>'
+               '<line x1="1" x2="4" stroke="red" data-class="stem"/>'
+               '<line y1="1" y2="4" stroke="#123456" data-class="petal"/>'
+               '<line x1="2" y1="2" x2="3" y2="3" stroke="#ff3232"/>')
+    deco = {(d.kind, d.target): dict(d.props) for d in src.decorations}
+    assert deco == {("face", "sky"): {"fill": "#c0f0ff"}, ("edge", "stem"): {"stroke": "#00a000"},
+                    ("edge", "petal"): {"stroke": "#123456"}}
+    tie = load('<line x2="4" stroke="#0000ff" data-class="a"/><line y2="4" stroke="red" data-class="a"/>')
+    assert [dict(d.props) for d in tie.decorations] == [{"stroke": "#0000ff"}]
+    # Labels and classes named by their colours need none.
+    assert load('<rect width="4" height="4" fill="#c0f0ff"/>'
+                '<line x2="4" stroke="#ff3232"/>').decorations == []

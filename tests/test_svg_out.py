@@ -230,3 +230,33 @@ def test_edge_and_vertex_images(tmp_path, decorated):
     assert len(lamps) == corner.count
     assert all(float(i.get("width")) == pytest.approx(2 * ex.unit) for i in lamps)
     assert all(i.get("transform", "").startswith("rotate(") for i in lamps)
+
+
+DRAWN = """\
+shape from "drawn.svg"
+class stem { min: 1 }
+"""
+DRAWN_SVG = ('<svg xmlns="http://www.w3.org/2000/svg">'
+             '<rect width="40" height="40" fill="#c0f0ff" data-label="sky"/>'
+             '<line x1="0" y1="20" x2="40" y2="20" stroke="#00a000" data-class="stem"/>'
+             '<line x1="20" y1="0" x2="20" y2="20" stroke="#ff3232"/></svg>')
+
+
+@pytest.mark.parametrize("user, stem, sky", [
+    ("", "#00a000", "#c0f0ff"),
+    ('decorate edge stem { stroke: black }\ndecorate face sky { fill: white }\n',
+     "#000000", "#ffffff"),
+    ('decorate edge * { stroke: blue }\n', "#0000ff", "#c0f0ff"),
+])
+def test_an_imported_drawing_keeps_its_colours_unless_decorated(tmp_path, user, stem, sky):
+    (tmp_path / "drawn.svg").write_text(DRAWN_SVG)
+    (tmp_path / "drawn.gg").write_text(DRAWN + user)
+    ex = load_example(tmp_path / "drawn.gg")
+    root = parse(render_svg(drawing_from_example(ex), ex))
+    strokes = {p.get("data-class"): p.get("stroke") for p in root.iter(f"{SVG}path")
+               if p.get("data-class")}
+    fills = {p.get("data-label"): p.get("fill") for p in root.iter(f"{SVG}path")
+             if p.get("data-label")}
+    assert strokes["stem"] == stem and fills["sky"] == sky
+    # A class named by its colour is drawn in it, unless a `*` decoration says otherwise.
+    assert strokes["#ff3232"] == ("#0000ff" if "*" in user else "#ff3232")

@@ -7,7 +7,8 @@ negated, so y points up on screen; the viewBox fits the drawing with a margin.
 
 Colours: a face label's decoration `fill` wins, then the label itself when it is a colour
 (`#rrggbb`, as SVG examples label faces), then a fixed palette by the label's position among
-the example's face labels. The exterior is left unpainted unless decorated. Decorations
+the example's face labels; an edge class's `stroke` likewise, then the class when it is a
+colour, then a palette. The exterior is left unpainted unless decorated. Decorations
 (`decorate face|edge|vertex TARGET {...}`; a named target beats `*`, and among equals the
 later decoration wins)
 supply face fill/opacity/pattern, edge stroke/width/opacity/image, and vertex
@@ -105,7 +106,10 @@ def face_paint(label: str, plain: list[str], exterior: str,
 def edge_paint(cls: str, class_order: list[str], edge_decos: list[tuple[str, dict]]) -> dict:
     """An edge class's decoration style, with its stroke colour filled in."""
     style = _style_for(edge_decos, cls)
-    style.setdefault("stroke", STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)])
+    if "stroke" not in style:
+        # A class named by its colour (an SVG line's stroke, as the importer names them).
+        style["stroke"] = cls.lower() if _hex_colour(cls) else \
+            STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)]
     return style
 
 
