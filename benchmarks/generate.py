@@ -8,7 +8,7 @@ at the end, so the second minus the first is what the drawing and its indexes ta
 
     .venv/bin/python benchmarks/generate.py                       # the simple corpus grammars
     .venv/bin/python benchmarks/generate.py EXAMPLE.svg|.gg|.ggr --sizes 1000,5000 --window 500
-    .venv/bin/python benchmarks/generate.py --profile 20000 curl.svg   # cProfile of the window
+    .venv/bin/python benchmarks/generate.py --profile 20000 curl.svg   # cProfile of the window (--sort cumtime)
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ from __future__ import annotations
 import argparse
 import gc
 import json
-import os
 import resource
 import subprocess
 import sys
@@ -43,7 +42,8 @@ def peak_mib() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024      # KiB on Linux
 
 
-def measure(path: str, size: int, window: int, seed: int, profile: bool = False) -> dict:
+def measure(path: str, size: int, window: int, seed: int, profile: bool = False,
+            sort: str = "tottime") -> dict:
     """Grow one drawing to `size` vertices and time `window` applied steps there."""
     grammar = load_grammar(path, compile_example)
     base = peak_mib()
@@ -67,7 +67,7 @@ def measure(path: str, size: int, window: int, seed: int, profile: bool = False)
     if profiler is not None:
         import pstats
         profiler.disable()
-        pstats.Stats(profiler, stream=sys.stderr).sort_stats(os.environ.get("GG_SORT","tottime")).print_stats(40)
+        pstats.Stats(profiler, stream=sys.stderr).sort_stats(sort).print_stats(40)
     return {"example": Path(path).name, "target": size, "vertices": len(engine.host),
             "grow_steps": grow.applied, "grow_s": grown,
             "applied": s.applied, "proposals": s.proposals,
@@ -92,6 +92,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--profile", type=int, metavar="SIZE",
                     help="profile the window at SIZE (cProfile, to stderr) in this process")
+    ap.add_argument("--sort", default="tottime", choices=("tottime", "cumtime"),
+                    help="how --profile orders its functions (default: own time)")
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)  # a child's run
     args = ap.parse_args(argv)
     # A bare corpus name (curl.svg), as the usage above writes it, is looked up in the corpus.
@@ -100,7 +102,7 @@ def main(argv=None) -> int:
     sizes = [int(x) for x in args.sizes.split(",")]
     if args.one or args.profile:
         print(json.dumps(measure(paths[0], args.profile or sizes[0], args.window, args.seed,
-                                 profile=bool(args.profile))))
+                                 profile=bool(args.profile), sort=args.sort)))
         return 0
     print(f"{'example':<20}{'target':>7}{'vertices':>9}{'grown in':>9}{'applied':>8}"
           f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'MiB base':>9}{'MiB peak':>9}")

@@ -17,7 +17,7 @@ from . import gg_checks as C
 from . import gg_schema as S
 from .diagnostics import Span, did_you_mean, error
 from .gg_imports import ParseSyntax, Unit, expand
-from .source import (DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
+from .source import (COLOUR_PROPERTY, DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
                      ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
 
 BORDER_CLASS = "border"
@@ -408,8 +408,8 @@ class _Resolver:
 def _undecorated(drawn: list, decos: list) -> list:
     """The colours a drawing was painted in (`svg_import`), less those the user sets: a
     decoration that colours a label or class, or all of them (`*`), beats the drawing's."""
-    prop = {"face": "fill", "edge": "stroke"}
-    set_by_user = {(d.kind, d.target) for _, d in decos if prop.get(d.kind) in dict(d.props)}
+    set_by_user = {(d.kind, d.target) for _, d in decos
+                   if COLOUR_PROPERTY.get(d.kind) in dict(d.props)}
     return [(unit, d) for unit, d in drawn
             if (d.kind, d.target) not in set_by_user and (d.kind, "*") not in set_by_user]
 

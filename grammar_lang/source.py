@@ -159,6 +159,9 @@ class Decoration:
     span: Span | None = field(default=None, compare=False)
 
 
+# The decoration property that colours a face label or an edge class.
+COLOUR_PROPERTY = {"face": "fill", "edge": "stroke"}
+
 Paint = Region | Stroke | ExplicitEdge
 
 

@@ -22,7 +22,7 @@ from defusedxml import sax as defused_sax
 from .diagnostics import Span, UserError, error
 from . import limits
 from .fileio import read_text
-from .source import (DEFAULT_CLASS, MAX_COORDINATE, Decoration, EdgeClass, ExampleSource, Region,
+from .source import (COLOUR_PROPERTY, DEFAULT_CLASS, MAX_COORDINATE, Decoration, EdgeClass, ExampleSource, Region,
                      Stroke)
 from .svg_colors import normalize_color
 from .svg_paths import (FLATTEN_HINT, IDENTITY, SvgValueError, apply, parse_length,
@@ -373,8 +373,7 @@ class _Importer:
         commonest; the first drawn among equals), so that generated drawings look like the
         example: a flower's green stems stay green. `gg_resolve` drops one the user's own
         decorations colour."""
-        prop = {"face": "fill", "edge": "stroke"}
-        return [Decoration(kind, name, ((prop[kind], max(counts, key=counts.get)),),
+        return [Decoration(kind, name, ((COLOUR_PROPERTY[kind], max(counts, key=counts.get)),),
                            span=self.spans[(kind, name)])
                 for (kind, name), counts in self.painted.items()]
 
