@@ -17,8 +17,8 @@ from . import gg_checks as C
 from . import gg_schema as S
 from .diagnostics import Span, did_you_mean, error
 from .gg_imports import ParseSyntax, Unit, expand
-from .source import (COLOUR_PROPERTY, DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass, ExampleSource,
-                     ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
+from .source import (COLOUR_PROPERTY, DEFAULT_CLASS, EXTERIOR, Decoration, EdgeClass,
+                     ExampleSource, ExplicitEdge, HalfEdgeSpec, Limits, Options, PrimitiveSpec, Region, Stroke)
 
 BORDER_CLASS = "border"
 
