@@ -123,6 +123,17 @@ def corner_primitives(primitives, labels, border) -> frozenset[int]:
     return frozenset(k for k, p in enumerate(primitives) if _turns(p.ring, labels, border))
 
 
+def spans_the_space(border_edge: bool, u_on_border: bool, v_on_border: bool) -> bool:
+    """Whether an edge is a chord of the space: not itself a border edge, with both ends on
+    the border. Such an edge is a piece of a line that does not end (Appendix A,
+    "infinitely-long lines"), cut by the frame: the frame sets its length, and no class
+    maximum applies to it (its minimum still does). Without this the village could never lay
+    a new strip of land from the frame's left side to its right: its one edge is as long as
+    the frame is wide, and its class allows 440 px. For a convex frame the two ends lie on
+    different sides, since a straight edge leaving a side cannot come back to it."""
+    return not border_edge and u_on_border and v_on_border
+
+
 def border_primitives(primitives, border) -> frozenset[int]:
     """Primitives with at least one border half-edge: the frame and what stands on it."""
     return frozenset(k for k, p in enumerate(primitives)

@@ -5,7 +5,8 @@ A drawing passes when
   tolerance), and every vertex's ring of half-edges is one of the example's primitives;
 - all edges of one label point in one exact direction (to float noise);
 - no two edges cross, touch or overlap, and no two vertices coincide;
-- every length respects its class (min/max, fixed, tile multiples, rigid exact vector);
+- every length respects its class (min/max, fixed, tile multiples, rigid exact vector), but
+  for a chord of the space (frame.spans_the_space), which has no maximum;
 - the faces, found geometrically, agree with the labels the edges state on their sides: a
   component drawn inside a face must have that face's label around it.
 
@@ -27,6 +28,7 @@ from scipy.spatial import cKDTree
 from grammar_lang import boundary as bd
 from grammar_lang.diagnostics import Span, did_you_mean, error
 from grammar_lang.example import Example
+from grammar_lang.frame import spans_the_space
 from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration
 from grammar_lang.vocabulary import EdgeLabel, Primitive, Vocabular, Vocabulary
@@ -468,10 +470,14 @@ class _Context:
 
     # --- lengths ----------------------------------------------------------------------------
     def lengths(self) -> None:
+        classes = self.ix.classes
+        border = {c.name for c in classes.values() if c.border}
+        on_border = {x for de in self.d.edges if de.cls in border for x in (de.u, de.v)}
         for e, de in enumerate(self.d.edges):
-            if e in self.bad_edges or de.cls not in self.ix.classes:
+            if e in self.bad_edges or de.cls not in classes:
                 continue
-            c = self.ix.classes[de.cls]
+            c = classes[de.cls]
+            chord = spans_the_space(de.cls in border, de.u in on_border, de.v in on_border)
             L = float(self.g.length[e])
             slack = COORD_SLACK + 1e-9 * L
             problem = expected = None
@@ -490,7 +496,8 @@ class _Context:
                         expected = f"a multiple of {_num(c.tile)}"
                 if problem is None and c.min_length is not None and L < c.min_length - slack:
                     problem, expected = "is shorter than its class allows", f"at least {_num(c.min_length)}"
-                if problem is None and c.max_length is not None and L > c.max_length + slack:
+                if problem is None and c.max_length is not None and L > c.max_length + slack \
+                        and not chord:
                     problem, expected = "is longer than its class allows", f"at most {_num(c.max_length)}"
             if problem:
                 self.fail("length", f"{self.edge_name(e)} (class {de.cls}) {problem}",

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from grammar_lang.algorithms.canon import canonical_key
 from grammar_lang.algorithms.components import (DisjointSet, component_labels, components,
-                                                glued_components, glued_parts)
+                                                glued_components, glued_parts, seed_groups)
 
 graphs = st.integers(0, 12).flatmap(lambda n: st.tuples(
     st.just(n), st.lists(st.tuples(st.integers(0, max(n - 1, 0)), st.integers(0, max(n - 1, 0))),
@@ -178,3 +178,17 @@ def test_glued_parts_renumber_each_component_from_zero():
     edges = [(0, 0, 2, 1), (1, 0, 3, 2), (1, 1, 3, 0)]
     assert glued_parts(labels, edges) == [((1, 1), ((0, 0, 1, 1),)),
                                           ((0, 0), ((0, 0, 1, 2), (0, 1, 1, 0)))]
+
+
+@given(st.integers(1, 40).flatmap(lambda n: st.tuples(
+    st.just(n),
+    st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=2 * n),
+    st.lists(st.integers(0, n - 1), max_size=8))))
+@settings(max_examples=300, deadline=None)
+def test_seed_groups_counts_the_components_the_seeds_lie_in(case):
+    n, edges, seeds = case
+    g = nx.Graph()
+    g.add_nodes_from(range(n))
+    g.add_edges_from(edges)
+    expected = len({min(nx.node_connected_component(g, s)) for s in seeds})
+    assert seed_groups(seeds, lambda v: g.neighbors(v)) == expected

@@ -633,3 +633,65 @@ def test_an_extent_a_bounded_border_class_cannot_span_names_that_class():
     assert "class side (240 to 400 long)" in d.message
     assert d.span is not None and d.span.file.endswith("space-station.gg")
     assert "class side" in d.render() and "^" in d.render()
+
+
+def _pieces(host, change=None) -> int:
+    """Connected components of the drawing, before `change` or (given) after it."""
+    import networkx as nx
+    g = nx.Graph()
+    new = dict(change.new) if change else {}
+    gone = set(change.removed) if change else set()
+    for v in [v for v in host.vertices() if v not in gone] + list(new):
+        g.add_node(v)
+        p = new.get(v, host.prim.get(v))
+        adj = change.adjacency(host, v, p) if change else \
+            [(i, s) for i, s in enumerate(host.link[v]) if s is not None]
+        g.add_edges_from((v, s[0]) for _, s in adj)
+    return nx.number_connected_components(g)
+
+
+@pytest.mark.parametrize("path", [ILLUSTRATIONS / "village.gg", ILLUSTRATIONS / "castle.gg",
+                                  EXAMPLES / "platform.gg"], ids=lambda p: p.stem)
+def test_a_step_is_refused_exactly_where_it_would_cut_the_drawing(path):
+    """In a frame, or with `connected`, the moves that could cut the drawing in two are tested
+    on it: refused where the drawing would fall into more pieces (a platform top taken off its last leg),
+    let through where what they leave is still held (the village's dip taken out of a strip
+    line leaves two pieces of line on the frame)."""
+    from runtime.engine.rewrite import plan
+    g = compile_example(load_example(path)).grammar
+    eng = Engine(g, seed=3)
+    eng.run(30)
+    seen = Counter()
+    for move in eng.moves():
+        if (move.rule.name, move.forward) not in eng.schedule.guarded:
+            continue
+        for match in eng.matches(move, limit=4):
+            change = plan(eng.host, move, match, eng.schedule.spo)
+            cuts = _pieces(eng.host, change) > _pieces(eng.host)
+            assert eng._cuts(change) == cuts, move.name
+            seen[cuts] += 1
+    assert seen[False] >= 1 and (path.stem != "platform" or seen[True] >= 1), seen
+
+
+def test_the_village_lays_a_strip_from_side_to_side():
+    """A strip of land is one edge from the frame's left side to its right: a chord of the
+    space, as long as the frame is wide, which its class's maximum (440 px) does not bound.
+    With no cost to hold the run back, the village's walk takes a dip away and lays one."""
+    from grammar_lang.frame import spans_the_space
+    from runtime.engine.costs import NoCost
+    ex, g = _framed("village.gg")
+    eng = Engine(g, seed=65, cost=NoCost())
+    host, t = eng.host, eng.host.t
+    longest = 0.0
+    for _ in range(40):
+        eng.run(None, iterations=25)
+        for v in host.vertices():
+            for i, s in enumerate(host.link[v]):
+                lab = t.label[host.prim[v]][i]
+                if s is not None and spans_the_space(lab in host.border_labels, True,
+                                                    host.prim[s[0]] in host.on_border) \
+                        and host.prim[v] in host.on_border:
+                    longest = max(longest, abs(host.pos[v][0] - host.pos[s[0]][0]))
+    assert longest > 1000, longest      # the frame is 1,540 wide; class 0 stops at 440
+    failures = check_drawing(ex, host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])

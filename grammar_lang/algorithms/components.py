@@ -9,7 +9,7 @@ segments, as numpy arrays) to scipy's compiled `connected_components`.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Hashable, Iterable, Sequence, TypeVar
+from typing import TYPE_CHECKING, Callable, Hashable, Iterable, Sequence, TypeVar
 
 if TYPE_CHECKING:
     import numpy as np
@@ -93,3 +93,40 @@ def component_labels(n: int, ends: np.ndarray) -> tuple[int, np.ndarray]:
     graph = coo_matrix((np.ones(len(ends)), (ends[:, 0], ends[:, 1])), shape=(n, n))
     count, labels = connected_components(graph, directed=False)
     return int(count), labels
+
+
+def seed_groups(seeds: Iterable[T], neighbours: Callable[[T], Iterable[T]]) -> int:
+    """How many connected components of a graph (given by `neighbours`) the `seeds` lie in.
+
+    For a rewriting step that may cut a drawing in two (schedule.py): its new parts must still
+    hang together through the rest of the drawing, which may be large. So the graph is not
+    walked whole: one search grows from each seed, one vertex at a time in turn, searches
+    merge where they meet, and a group of searches that runs out of vertices is a component
+    of its own. The work is that of the smaller parts, times the seeds: a cut-off piece is
+    found in the time it takes to walk it, and seeds that hang together in the time their
+    searches take to meet."""
+    order = list(dict.fromkeys(seeds))
+    owner: dict = {}
+    ds = DisjointSet(range(len(order)))
+    frontier: list[list] = []
+    for k, s in enumerate(order):
+        owner[s] = k
+        frontier.append([s])
+    groups, closed = len(order), 0      # `closed`: groups found to be whole components
+    while groups - closed > 1:
+        live = [k for k in range(len(order)) if frontier[k]]
+        done = {ds.find(k) for k in range(len(order))} - {ds.find(k) for k in live}
+        if len(done) > closed:
+            closed = len(done)
+            continue
+        for k in live:
+            v = frontier[k].pop()
+            for w in neighbours(v):
+                o = owner.get(w)
+                if o is None:
+                    owner[w] = k
+                    frontier[k].append(w)
+                elif ds.find(o) != ds.find(k):
+                    ds.union(o, k)
+                    groups -= 1
+    return groups

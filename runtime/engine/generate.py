@@ -21,6 +21,7 @@ from typing import Callable
 import numpy as np
 
 from grammar_lang import limits
+from grammar_lang.algorithms.components import seed_groups
 from grammar_lang.diagnostics import error
 from grammar_lang.rules import Grammar
 
@@ -167,6 +168,10 @@ class Engine:
                         seen.add(min((v, i), s))
                         ne -= 1
                         counts[h.t.label[h.prim[v]][i]] -= 1
+            # The host edges its wires matched are cut, and glued anew to what replaces them.
+            for v, i in change.cut:
+                ne -= 1
+                counts[h.t.label[h.prim[v]][i]] -= 1
             prims = dict(change.new)
             for (v, i), _ in change.glue:
                 ne += 1
@@ -232,6 +237,15 @@ class Engine:
                 for tok in side.wires:
                     counts[tok >> 1] += sign
                     ne += sign
+            # Across the interface: where a wire end of one side meets a vertex slot of the
+            # other, the edge from that slot to the context is one the wire's side does not
+            # have (a wire replaced by a part is glued to its ends by two new edges).
+            for (pv, pi), (rv, ri) in move.interface:
+                if (pv < 0) != (rv < 0):
+                    side, v, i, sign = ((move.replacement, rv, ri, 1) if pv < 0
+                                        else (move.pattern.side, pv, pi, -1))
+                    counts[rings[side.vertices[v]][i] >> 1] += sign
+                    ne += sign
             dv = len(move.replacement.vertices) - len(move.pattern.side.vertices)
             delta = self._deltas[id(move)] = (dv, ne, tuple(counts))
         return delta
@@ -252,6 +266,8 @@ class Engine:
         change = plan(host, move, match, self.schedule.spo)
         if host.pinned and not host.pinned.isdisjoint(change.removed):
             return Outcome(None, Rejection.MOVES_FRAME)
+        if (move.rule.name, move.forward) in self.schedule.guarded and self._cuts(change):
+            return Outcome(None, Rejection.SPLITS)
         after = self.stats(change) if use_cost else None
         if after is not None:
             if after != screened:
@@ -397,6 +413,25 @@ class Engine:
         return s
 
     # --- helpers ----------------------------------------------------------------------------
+    def _cuts(self, change: Change) -> bool:
+        """Whether `change` leaves the parts it touches in more pieces than they were: its
+        new vertices and new bare edges, after it, against the vertices and edges it matched,
+        before. Asked before any geometry, of the moves the schedule guards."""
+        host, new = self.host, dict(change.new)
+        seeds = list(new) + [v for a, b in change.glue for v in (a[0], b[0])
+                             if a[0] not in new and b[0] not in new]
+
+        def after(v):
+            p = new.get(v)
+            return [s[0] for _, s in change.adjacency(host, v, host.prim[v] if p is None else p)]
+
+        pieces = seed_groups(seeds, after)
+        if pieces <= 1:
+            return False
+        was = list(change.removed) + [v for s in change.cut
+                                      for v in (s[0], host.link[s[0]][s[1]][0])]
+        return pieces > seed_groups(was, lambda v: [s[0] for s in host.link[v] if s is not None])
+
     def _floating(self, change: Change) -> bool:
         return not change.removed and all(b[0] not in self.host.prim for _, b in change.glue)
 

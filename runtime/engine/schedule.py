@@ -70,6 +70,10 @@ class Schedule:
     # With `connected` (Appendix A): the starters, applied once at the start instead of as
     # moves, so that the drawing is one structure (plus the frame it stands in).
     opening: tuple[tuple[DirectedRule, float], ...] = ()
+    # With `connected` or in a frame: the moves, as (rule name, forward), whose side could
+    # cut the drawing in two (`_splits`); the engine tests each such step on the drawing
+    # (Engine._cuts) and refuses the ones that do.
+    guarded: frozenset[tuple[str, bool]] = frozenset()
 
     @staticmethod
     def build(grammar: Grammar, bidirectional: bool | None = None,
@@ -78,12 +82,15 @@ class Schedule:
         both = (not spo) if bidirectional is None else bidirectional
         rings = grammar.rings
         connected = grammar.header.options.connected
-        # In a frame, structures stand on it: no rule may cut a part off to float in the
+        # In a frame, structures stand on it: no step may cut a part off to float in the
         # space (a roof lifted off its tower), though a starter may still make a part the
-        # example has free-standing (a window).
+        # example has free-standing (a window). Whether a step cuts is a question about the
+        # drawing, not the rule: taking the village's notch out of a strip line leaves two
+        # pieces of line, each still held by the frame. Left out as rules, such moves could
+        # never clear a strip for a new one, and the village stalled after 16 steps.
         whole = connected or grammar.header.frame is not None
         by_level: dict[int, list[tuple[DirectedRule, float]]] = {}
-        opening = []
+        opening, guarded = [], set()
         for rule in grammar.rules:
             if rule.weight <= 0:
                 continue
@@ -94,7 +101,7 @@ class Schedule:
             dirs = (True, False) if both else ((False,) if rule.is_starter else (True,))
             for fwd in dirs:
                 if whole and not rule.is_starter and _splits(rule, fwd):
-                    continue
+                    guarded.add((rule.name, fwd))
                 by_level.setdefault(rule.priority, []).append(
                     (DirectedRule.build(rule, fwd, rings), float(rule.weight)))
         limits = limits or {}
@@ -106,7 +113,7 @@ class Schedule:
                 req[k, list(m.pattern.side.vertices)] = True
             levels.append(Level(p, moves, tuple(w for _, w in by_level[p]), limits.get(p), req))
         levels = tuple(levels)
-        return Schedule(levels, spo, tuple(opening))
+        return Schedule(levels, spo, tuple(opening), frozenset(guarded))
 
     def opening_move(self, rng: np.random.Generator) -> DirectedRule | None:
         """One starter, drawn by weight, for a connected grammar's first step."""

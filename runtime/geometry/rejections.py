@@ -17,6 +17,7 @@ class Rejection(str, Enum):
     TERMINAL = "terminal"                      # no move of any level applies
     COST = "cost"                              # the Metropolis coin refused it
     MOVES_FRAME = "moves the frame"            # it would remove a frame corner
+    SPLITS = "splits the drawing"              # connected or framed: it would cut a part off
     OVER_CONSTRAINED = "over-constrained"      # A x = b has no solution
     LENGTH_FIXED = "length fixed out of range"  # the system fixes a length outside its class
     LENGTH_RANGE = "length out of range"       # no target in the sampling box can fit

@@ -42,6 +42,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from grammar_lang.algorithms.components import DisjointSet
+from grammar_lang.frame import spans_the_space
 
 from .change import Change, HostView
 from .pinv import pinv
@@ -396,7 +397,7 @@ class Solver:
         constant) lies outside its class's range: then every sample fails."""
         tol = self.tol
         for e in fact.fixed_idx:
-            lt, ht = self._bounds(edges[e][-1], self._known(edges[e], kept[e]))
+            lt, ht = self._edge_bounds(edges[e], self._known(edges[e], kept[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
                 self._blame(edges[e])
                 return True
@@ -463,13 +464,13 @@ class Solver:
         for e, edge in enumerate(edges):
             lab = edge[-1]
             l, h, fixed, tile = t.lengths[lab]
-            lo.append(l)
-            hi.append(h)
             kn = self._known(edge, kept[e])
             known.append(kn)
             if kn != kn:
                 drawn.append(e)
-            lt, ht = self._bounds(lab, kn)
+            lt, ht = self._edge_bounds(edge, kn)
+            lo.append(l)
+            hi.append(h if ht < math.inf else math.inf)
             lo_tol.append(lt)
             hi_tol.append(ht)
             if tile and fixed is None:
@@ -496,6 +497,16 @@ class Solver:
             pv, pw = host.pos[v], host.pos[w]
             return d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1])
         return math.nan
+
+    def _edge_bounds(self, edge, kn: float) -> tuple[float, float]:
+        """`_bounds` of an edge (v, i, w, j, direction, label): with no maximum for a chord
+        of the space (frame.spans_the_space), whose length the frame sets."""
+        lt, ht = self._bounds(edge[-1], kn)
+        on = self.host.on_border
+        if on and spans_the_space(edge[-1] in self.host.border_labels,
+                                  self.prim(edge[0]) in on, self.prim(edge[2]) in on):
+            return lt, math.inf
+        return lt, ht
 
     def _bounds(self, lab: int, kn: float) -> tuple[float, float]:
         """A length's class range widened by the tolerance. A drawn edge also keeps its
