@@ -654,9 +654,9 @@ def _pieces(host, change=None) -> int:
                                   EXAMPLES / "platform.gg"], ids=lambda p: p.stem)
 def test_a_step_is_refused_exactly_where_it_would_cut_the_drawing(path):
     """In a frame, or with `connected`, the moves that could cut the drawing in two are tested
-    on it: refused where the drawing would fall into more pieces (a platform top taken off its last leg),
-    let through where what they leave is still held (the village's dip taken out of a strip
-    line leaves two pieces of line on the frame)."""
+    on it: refused where the drawing would fall into more pieces (a platform top taken off its
+    last leg), let through where what they leave is still held (the village's dip taken out
+    of a strip line leaves two pieces of line on the frame)."""
     from runtime.engine.rewrite import plan
     g = compile_example(load_example(path)).grammar
     eng = Engine(g, seed=3)
@@ -681,16 +681,15 @@ def test_the_village_lays_a_strip_from_side_to_side():
     from runtime.engine.costs import NoCost
     ex, g = _framed("village.gg")
     eng = Engine(g, seed=65, cost=NoCost())
-    host, t = eng.host, eng.host.t
+    host = eng.host
+    on, prim = host.on_border, host.prim
     longest = 0.0
     for _ in range(40):
         eng.run(None, iterations=25)
         for v in host.vertices():
             for i, s in enumerate(host.link[v]):
-                lab = t.label[host.prim[v]][i]
-                if s is not None and spans_the_space(lab in host.border_labels, True,
-                                                    host.prim[s[0]] in host.on_border) \
-                        and host.prim[v] in host.on_border:
+                if s is not None and spans_the_space(host.t.label[prim[v]][i] in host.border_labels,
+                                                     prim[v] in on, prim[s[0]] in on):
                     longest = max(longest, abs(host.pos[v][0] - host.pos[s[0]][0]))
     assert longest > 1000, longest      # the frame is 1,540 wide; class 0 stops at 440
     failures = check_drawing(ex, host.to_drawing())

@@ -470,7 +470,7 @@ class Solver:
                 drawn.append(e)
             lt, ht = self._edge_bounds(edge, kn)
             lo.append(l)
-            hi.append(h if ht < math.inf else math.inf)
+            hi.append(h if ht < math.inf else math.inf)     # a chord's draw has no top either
             lo_tol.append(lt)
             hi_tol.append(ht)
             if tile and fixed is None:
