@@ -3,7 +3,11 @@
 For each example and size the grammar is compiled (not timed) in a fresh process, grown with
 the `size` cost until the drawing holds that many vertices, and then measured over a window of
 steps at that size, so the rows show whether the per-step time stays flat as the drawing
-grows. Each process also reports its peak memory (`ru_maxrss`), once after compiling and once
+grows. Beside the time per applied step it prints the time per proposal (applied or not), the
+solver's samples per applied step and the drawing's bounding-box area per vertex (in square
+units): a grown drawing packs denser as it gets larger, and then more of its proposals fail
+their crossing tests, so a flat time per proposal with more samples per step is the drawing
+getting harder, not the code getting slower. Each process also reports its peak memory (`ru_maxrss`), once after compiling and once
 at the end, so the second minus the first is what the drawing and its indexes take.
 
     .venv/bin/python benchmarks/generate.py                       # the simple corpus grammars
@@ -61,18 +65,23 @@ def measure(path: str, size: int, window: int, seed: int, profile: bool = False,
         import cProfile
         profiler = cProfile.Profile()
         profiler.enable()
+    samples0 = engine.late.samples
     t0 = time.perf_counter()
     s = engine.run(window)
     dt = time.perf_counter() - t0
+    samples = engine.late.samples - samples0
     if profiler is not None:
         import pstats
         profiler.disable()
         pstats.Stats(profiler, stream=sys.stderr).sort_stats(sort).print_stats(40)
     return {"example": Path(path).name, "target": size, "vertices": len(engine.host),
+            "area_per_vertex": engine.stats().area / max(len(engine.host), 1),
             "grow_steps": grow.applied, "grow_s": grown,
             "applied": s.applied, "proposals": s.proposals,
             "steps_per_s": s.applied / dt if dt else 0.0,
-            "ms_per_step": 1000 * dt / max(s.applied, 1), "stop": s.stop,
+            "ms_per_step": 1000 * dt / max(s.applied, 1),
+            "us_per_proposal": 1e6 * dt / max(s.proposals, 1),
+            "samples_per_step": samples / max(s.applied, 1), "stop": s.stop,
             "base_mib": base, "peak_mib": peak_mib()}
 
 
@@ -105,13 +114,15 @@ def main(argv=None) -> int:
                                  profile=bool(args.profile), sort=args.sort)))
         return 0
     print(f"{'example':<20}{'target':>7}{'vertices':>9}{'grown in':>9}{'applied':>8}"
-          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'MiB base':>9}{'MiB peak':>9}")
+          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'µs/prop.':>9}{'samp./step':>11}{'area/v':>7}"
+          f"{'MiB base':>9}{'MiB peak':>9}")
     for p in paths:
         for size in sizes:
             r = in_fresh_process(p, size, args.window, args.seed)
             print(f"{r['example']:<20}{r['target']:>7}{r['vertices']:>9}{r['grow_s']:>8.1f}s"
                   f"{r['applied']:>8}{r['proposals']:>10}{r['steps_per_s']:>9.0f}"
-                  f"{r['ms_per_step']:>9.2f}{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
+                  f"{r['ms_per_step']:>9.2f}{r['us_per_proposal']:>9.0f}"
+                  f"{r['samples_per_step']:>11.2f}{r['area_per_vertex']:>7.2f}{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
                   + ("" if r["stop"].startswith("reached") else f"  ({r['stop']})"), flush=True)
     return 0
 
