@@ -7,8 +7,9 @@ grows. Beside the time per applied step it prints the time per proposal (applied
 solver's samples per applied step and the drawing's bounding-box area per vertex (in square
 units): a grown drawing packs denser as it gets larger, and then more of its proposals fail
 their crossing tests, so a flat time per proposal with more samples per step is the drawing
-getting harder, not the code getting slower. Each process also reports its peak memory (`ru_maxrss`), once after compiling and once
-at the end, so the second minus the first is what the drawing and its indexes take.
+getting harder, not the code getting slower. Each process also reports its peak memory
+(`ru_maxrss`), once after compiling and once at the end, so the second minus the first is what
+the drawing and its indexes take.
 
     .venv/bin/python benchmarks/generate.py                       # the simple corpus grammars
     .venv/bin/python benchmarks/generate.py EXAMPLE.svg|.gg|.ggr --sizes 1000,5000 --window 500
@@ -114,15 +115,16 @@ def main(argv=None) -> int:
                                  profile=bool(args.profile), sort=args.sort)))
         return 0
     print(f"{'example':<20}{'target':>7}{'vertices':>9}{'grown in':>9}{'applied':>8}"
-          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'µs/prop.':>9}{'samp./step':>11}{'area/v':>7}"
-          f"{'MiB base':>9}{'MiB peak':>9}")
+          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'µs/prop.':>9}{'samp./step':>11}"
+          f"{'area/v':>7}{'MiB base':>9}{'MiB peak':>9}")
     for p in paths:
         for size in sizes:
             r = in_fresh_process(p, size, args.window, args.seed)
             print(f"{r['example']:<20}{r['target']:>7}{r['vertices']:>9}{r['grow_s']:>8.1f}s"
                   f"{r['applied']:>8}{r['proposals']:>10}{r['steps_per_s']:>9.0f}"
                   f"{r['ms_per_step']:>9.2f}{r['us_per_proposal']:>9.0f}"
-                  f"{r['samples_per_step']:>11.2f}{r['area_per_vertex']:>7.2f}{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
+                  f"{r['samples_per_step']:>11.2f}{r['area_per_vertex']:>7.2f}"
+                  f"{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
                   + ("" if r["stop"].startswith("reached") else f"  ({r['stop']})"), flush=True)
     return 0
 
