@@ -6,8 +6,8 @@ steps at that size, so the rows show whether the per-step time stays flat as the
 grows. Beside the time per applied step it prints the time per proposal (applied or not), the
 solver's samples per applied step and the drawing's bounding-box area per vertex (in square
 units): a grown drawing packs denser as it gets larger, and then more of its proposals fail
-their crossing tests, so a flat time per proposal with more samples per step is the drawing
-getting harder, not the code getting slower. Each process also reports its peak memory
+their crossing tests: a time per proposal that grows little while the samples per step grow
+is the drawing getting harder, not the code getting slower. Each process also reports its peak memory
 (`ru_maxrss`), once after compiling and once at the end, so the second minus the first is what
 the drawing and its indexes take.
 
