@@ -7,9 +7,9 @@ grows. Beside the time per applied step it prints the time per proposal (applied
 solver's samples per applied step and the drawing's bounding-box area per vertex (in square
 units): a grown drawing packs denser as it gets larger, and then more of its proposals fail
 their crossing tests: a time per proposal that grows little while the samples per step grow
-is the drawing getting harder, not the code getting slower. Each process also reports its peak memory
-(`ru_maxrss`), once after compiling and once at the end, so the second minus the first is what
-the drawing and its indexes take.
+is the drawing getting harder, not the code getting slower. Each process also reports its
+peak memory (`ru_maxrss`), once after compiling and once at the end, so the second minus the
+first is what the drawing and its indexes take.
 
     .venv/bin/python benchmarks/generate.py                       # the simple corpus grammars
     .venv/bin/python benchmarks/generate.py EXAMPLE.svg|.gg|.ggr --sizes 1000,5000 --window 500
