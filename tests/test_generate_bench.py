@@ -28,7 +28,8 @@ def test_the_window_counts_every_sample_of_its_solvers(monkeypatch):
     monkeypatch.setattr(engine_module, "Solver", solver)
     monkeypatch.setattr(engine_module.Engine, "run", run)
     r = generate.measure(str(generate.CORPUS / "curl.svg"), 200, 40, seed=1)
-    assert r["vertices"] >= 200 and r["applied"] == 40 and r["proposals"] >= 40
+    # The window runs at its size: the size cost holds the count near it, either way.
+    assert abs(r["vertices"] - 200) <= 20 and r["applied"] == 40 and r["proposals"] >= 40
     window = solvers[runs[-1]:]
     assert window and sum(s.samples for s in window) > 0
     assert r["samples_per_step"] * r["applied"] == sum(s.samples for s in window)

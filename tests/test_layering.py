@@ -52,8 +52,8 @@ def test_the_check_sees_imports_by_string():
 RUNTIME_LAYOUT = {
     "engine": {"host", "matching", "rewrite", "schedule", "costs", "generate",
                "free_host", "free_match", "free_engine", "late"},
-    "geometry": {"solver", "spatial", "faces", "landing", "framing", "tables", "change",
-                 "rejections", "pinv"},
+    "geometry": {"solver", "slides", "spatial", "faces", "landing", "framing", "tables",
+                 "change", "rejections", "pinv"},
     "output": {"drawing", "svg_out", "bending", "graphml_out", "free_svg"},
     "repl": {"session", "commands", "complete"},
     "": {"cli", "run_cmd", "interrupt", "verifier"},

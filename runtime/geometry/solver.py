@@ -47,6 +47,7 @@ from grammar_lang.frame import spans_the_space
 from .change import Change, HostView
 from .pinv import pinv
 from .rejections import Rejection
+from .slides import Slide, sliding_part
 from .spatial import Point, seg_distance
 
 I_ROUNDS, J_SAMPLES = 5, 10
@@ -56,8 +57,6 @@ NEW_POS, OLD_POS, LENGTH = 10.0, 1.0, 1.0
 # only the change's centre to aim at: its place comes from the lengths, or the projection
 # would squeeze the structure towards that point.
 LOOSE_POS = 100.0
-OLD, GLUED, LOOSE = 0, 1, 2          # kinds of free vertex in a system's shape
-POS_SCALE = np.array([OLD_POS, NEW_POS, LOOSE_POS])
 # A frame's sides are as long as the frame: a structure standing on one takes what it needs
 # and the stretches of bare side beside it take the rest, so their lengths are cheapest.
 FRAME_SIDE = 100.0
@@ -140,6 +139,12 @@ class Solver:
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
         self.culprits: dict[tuple[int, int], int] = {}
+        self.culprit_need: dict[tuple[int, int], tuple[Point, float]] = {}   # direction, need
+        # Parts moved as rigid units (slides.py): their anchors are free vertices, and each
+        # other member follows its anchor at a fixed offset.
+        self.slides: dict[int, Slide] = {}
+        self.attached: dict[int, tuple[int, float, float]] = {}     # member → anchor, offset
+        self._slide_near: dict[int, tuple[float, list]] = {}       # see _near_slide
         self.blamed: dict[int, int] = {}        # edge label → failed lengths, for messages
         self._label_bounds: dict[int, tuple] = {}       # see _bounds_of
         self.tol = min(1e-7 * host.t.unit, LENGTH_NOISE)
@@ -223,10 +228,12 @@ class Solver:
         self.failures[why] = self.failures.get(why, 0) + 1
         self.last_failure = why
 
-    def _blame(self, edge) -> None:
-        """Count a failed length against its edge: the next round frees what holds it."""
+    def _blame(self, edge, need: float) -> None:
+        """Count a failed length against its edge: the next round frees what holds it.
+        `need`: how much longer it had to be (negative: shorter)."""
         key = (edge[0], edge[2])
         self.culprits[key] = self.culprits.get(key, 0) + 1
+        self.culprit_need[key] = (edge[4], need)
         self.blamed[edge[-1]] = self.blamed.get(edge[-1], 0) + 1
 
     def placements(self) -> Iterator[Placement]:
@@ -284,10 +291,12 @@ class Solver:
         top corners to rise; a random neighbour (the paper's choice) rarely is the one, and in
         a drawing of straight lines one vertex freed alone is still held by its other edges.
         Otherwise (over-constrained, crossings), one random neighbour, as the paper does."""
-        fs = set(free)
+        fs = set(free).union(self.attached)
         blamed = max(sorted(self.culprits.items()), key=lambda kv: kv[1])[0] \
             if self.culprits else None
         self.culprits = {}
+        if blamed is not None and self._slide(blamed, free, fs):
+            return True
         want = self._nearest_held(blamed, fs) if blamed is not None else []
         if not want:
             near = {w for v in free for _, (w, _) in self.adjacency(v)}
@@ -302,6 +311,36 @@ class Solver:
                 free.extend(part)
                 fs.update(part)
         return True
+
+    def _slide(self, ends: tuple[int, int], free: list[int], fs: set[int]) -> bool:
+        """Free the part beyond a held end of the failed edge `ends` as one unit (slides.py),
+        the smaller part where both ends are held; False when neither end has one."""
+        v, w = ends
+        d, need = self.culprit_need[ends]
+        best = None
+        hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
+        # The edge runs from v to w along d: beyond w is +d, beyond v is −d.
+        for held, other, sign in ((w, v, 1), (v, w, -1)):
+            if held in fs or held in self.host.pinned:
+                continue
+            s = sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
+                             hung | {other}, d, sign, need, fs)
+            if s is not None and (best is None or len(s.offsets) < len(best.offsets)):
+                best = s
+        if best is None:
+            return False
+        self.slides[best.anchor] = best
+        for m, (ox, oy) in best.offsets.items():
+            self.attached[m] = (best.anchor, ox, oy)
+        free.append(best.anchor)
+        return True
+
+    def _range_now(self, v: int, i: int, w: int, j: int) -> tuple[float, float, float]:
+        """An existing edge's range (as a kept edge's, _edge_bounds) and its length now."""
+        t, pv = self.host.t, self.prim(v)
+        edge = (v, i, w, j, t.direction[pv][i], t.label[pv][i])
+        now = self._known(edge, True)
+        return (*self._edge_bounds(edge, now), now)
 
     def _nearest_held(self, ends: tuple[int, int], free: set[int]) -> list[int]:
         """The vertices not yet free (nor pinned) nearest the edge `ends`, by breadth-first
@@ -343,13 +382,19 @@ class Solver:
         """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
         edges, seen = [], set()       # the slots of the edges listed
-        for v in free:
-            pv = self.prim(v)
-            for i, s in self.adjacency(v):
-                if (v, i) in seen:
-                    continue
-                seen.add(s)
-                edges.append((v, i, *s, t.direction[pv][i], t.label[pv][i]))
+        attached = self.attached
+        for a in free:
+            # A slide's edges are those from any of its members to what is not in it.
+            slide = self.slides.get(a)
+            for v in (a, *slide.offsets) if slide is not None else (a,):
+                pv = self.prim(v)
+                for i, s in self.adjacency(v):
+                    if (v, i) in seen:
+                        continue
+                    if slide is not None and (s[0] == a or attached.get(s[0], (None,))[0] == a):
+                        continue
+                    seen.add(s)
+                    edges.append((v, i, *s, t.direction[pv][i], t.label[pv][i]))
         fs = set(free)
         for (v, i), (w, j) in self.bridges:
             if v not in fs and w not in fs:
@@ -364,17 +409,21 @@ class Solver:
         edges = self._edges(free)
         kept = self._kept(edges)
         idx = {v: k for k, v in enumerate(free)}
+        for m, (a, _, _) in self.attached.items():
+            idx[m] = idx[a]
         prim, glued, sides = host.prim, self.glued, host.side_labels
         lengths = t.lengths if self.strict else None
         # Built from lists: tuple() of a list is cheaper than of a generator.
-        shape = (tuple([OLD if v in prim else GLUED if v in glued else LOOSE for v in free]),
+        slides = self.slides
+        shape = (tuple([(OLD_POS if v not in slides else _slid_pos(slides[v])) if v in prim
+                        else NEW_POS if v in glued else LOOSE_POS for v in free]),
                  tuple([(idx.get(v, -1), idx.get(w, -1), d,
                          None if lengths is None else lengths[lab][2], lab in sides, not k)
                         for (v, _, w, _, d, lab), k in zip(edges, kept)]))
         fact = self.cache.get(shape)
         if fact is None:
             fact = self.cache.put(shape, _factorise(*shape))
-        bl = _right_hand_side(shape[1], edges, host.pos)
+        bl = _right_hand_side(shape[1], edges, host.pos, self.attached)
         b = np.array(bl)
         res = (b - fact.M.dot(fact.Mp.dot(b))).tolist()
         # As numpy's max(|·|, initial=0): a NaN anywhere makes the test false.
@@ -390,7 +439,10 @@ class Solver:
         c = (fact.scale_len * fact.Mp_len.dot(b)).tolist()
         if self._fixed_out(edges, kept, fact, c):
             return Rejection.LENGTH_FIXED
-        return self._doomed(self._round(free, edges, kept, fact, b), fact, c)
+        rd = self._round(free, edges, kept, fact, b)
+        # A round with a slide is repaired (_repairing), and the doomed test reads the plain
+        # projection, which slides a light part far past what its seams allow.
+        return rd if self.slides else self._doomed(rd, fact, c)
 
     def _fixed_out(self, edges, kept, fact: "Factor", c: list) -> bool:
         """Whether a length the system fixes whatever the target (its row of x = R t + c is
@@ -399,7 +451,8 @@ class Solver:
         for e in fact.fixed_idx:
             lt, ht = self._edge_bounds(edges[e], self._known(edges[e], kept[e]))
             if not (c[e] > tol and lt <= c[e] <= ht):
-                self._blame(edges[e])
+                self._blame(edges[e], (lt if c[e] < lt else tol) - c[e] if c[e] <= ht
+                            else ht - c[e])
                 return True
         return False
 
@@ -416,7 +469,8 @@ class Solver:
             ce += c[e]
             top = ce + sp
             if top <= tol or top < rd.lo_tol[e] or ce - sp > rd.hi_tol[e]:
-                self._blame(rd.edges[e])
+                self._blame(rd.edges[e], max(rd.lo_tol[e], tol) - top if ce - sp <= rd.hi_tol[e]
+                            else rd.hi_tol[e] - (ce - sp))
                 return Rejection.LENGTH_RANGE
         return rd
 
@@ -580,20 +634,30 @@ class Solver:
         xs = x.tolist()
         tol = self.tol
         lengths = xs[2 * nF:]
-        # One pass: the first length out of its class is the one blamed (not strict, only
-        # when some length is not positive).
+        # Every length in its class (not strict: only positive). The length furthest out is
+        # blamed, not the first in the system's order: which piece beside a new part is
+        # blamed says which way a slide moves (slides.py), and the first was always the
+        # piece on the same side, so a station's modules slid ever further left.
         if self.strict or not all(s > tol for s in lengths):
+            worst, blamed = 0.0, None
             for e, (s, lt, ht) in enumerate(zip(lengths, rd.lo_tol, rd.hi_tol)):
                 if not (s > tol and lt <= s <= ht):
-                    self._blame(rd.edges[e])
-                    self._fail(Rejection.EDGE_LENGTH)
-                    return None
+                    miss = max(lt, tol) - s if s <= ht else s - ht
+                    if blamed is None or miss > worst:
+                        worst, blamed = miss, e
+            if blamed is not None:
+                s, lt, ht = lengths[blamed], rd.lo_tol[blamed], rd.hi_tol[blamed]
+                self._blame(rd.edges[blamed], max(lt, tol) - s if s <= ht else ht - s)
+                self._fail(Rejection.EDGE_LENGTH)
+                return None
         pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
+        for m, (a, ox, oy) in self.attached.items():
+            pa = pos[a]
+            pos[m] = (pa[0] + ox, pa[1] + oy)
         frame = self.host.frame
         # Vertices on the border lie on the frame's sides (held there by their directions);
         # every other vertex must be inside it.
-        if frame is not None and not all(frame.contains(*p, self.clearance) for v, p in pos.items()
-                                         if self.prim(v) not in self.host.on_border):
+        if frame is not None and not self._in_frame(frame, pos):
             self._fail(Rejection.OUTSIDE_FRAME)
             return None
         if self.strict and not self._planar(pos, rd.edges, rd):
@@ -608,11 +672,32 @@ class Solver:
             return None
         return pos
 
+    def _in_frame(self, frame, pos: dict[int, Point]) -> bool:
+        """Whether the sample's vertices lie inside the frame, but those on its sides (held
+        there by their directions). A slid part of a rectangular frame is tested by its box:
+        it moves as one, and a box inside a rectangle holds all it bounds."""
+        attached, on, clr = self.attached, self.host.on_border, self.clearance
+        rect = frame.rectangle
+        if not all(frame.contains(*p, clr) for v, p in pos.items()
+                   if (v not in attached or not rect) and self.prim(v) not in on):
+            return False
+        if rect:
+            hpos = self.host.pos
+            for a, slide in self.slides.items():
+                dx, dy = pos[a][0] - hpos[a][0], pos[a][1] - hpos[a][1]
+                box = slide.box
+                if box is not None and not (frame.contains(box[0] + dx, box[1] + dy, clr)
+                                            and frame.contains(box[2] + dx, box[3] + dy, clr)):
+                    return False
+        return True
+
     def _repairing(self) -> bool:
         """Whether this change's samples are repaired (`repair`): when the caller wants it."""
         if self._wants is None:
             self._wants = self.wanted is not None and self.wanted()
-        return self._wants
+        # A slide's round as well: its seams are kept lengths, soft in the projection, and
+        # unrepaired a light part slid past their ranges.
+        return self._wants or bool(self.slides)
 
     @staticmethod
     def _tile_lengths(x, nF, rd: "_Round") -> list[float]:
@@ -669,8 +754,11 @@ class Solver:
             # their lengths first (castle, 1,000 proposals: 682 samples in 3,143 rounds).
             rd.context = self._planar_context(pos)
         gone, ignore = rd.context
-        # Vertices: no two may coincide.
-        pts = list(pos.values())
+        # Vertices: no two may coincide. A slide's members are tested by their edges (below):
+        # a vertex that came too close to another would bring its edges as close.
+        attached, slides = self.attached, self.slides
+        pts = [p for v, p in pos.items() if v not in attached and v not in slides] \
+            if attached else list(pos.values())
         for k, p in enumerate(pts):
             for p2 in pts[k + 1:]:
                 if ((p[0] - p2[0]) ** 2 + (p[1] - p2[1]) ** 2) ** 0.5 < clr:     # _dist, inline
@@ -684,18 +772,20 @@ class Solver:
         # Edges: no crossing or touching except at a shared end. Boxes first, since most
         # candidates are far: boxes farther apart than the clearance hold no closer pair.
         segs = self._segments(pos, edges)
-        for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
-            for v2, w2, a2, c2, lx2, ly2, hx2, hy2 in segs[k + 1:]:
-                if v2 == v or v2 == w or w2 == v or w2 == w:
-                    continue
-                if lx > hx2 or lx2 > hx or ly > hy2 or ly2 > hy:
-                    continue
-                if seg_distance(a, c, a2, c2) < clr:
-                    self._fail(Rejection.CROSSING)
-                    return False
+        if _segments_meet(segs, None, clr) or self._meets_drawing(segs, ignore) \
+                or slides and self._slides_meet(pos, segs, ignore):
+            self._fail(Rejection.CROSSING)
+            return False
+        return True
+
+    def _meets_drawing(self, segs, ignore, keys=None) -> bool:
+        """Whether one of `segs` comes within the clearance of an edge of the drawing (but
+        those in `ignore` and those it shares an end with); `keys`: per segment, the drawing's
+        edges to try, else those the grid finds near it."""
+        grid, clr = self.host.grid, self.clearance
         boxes, link = grid.boxes, self.host.link
-        for v, w, a, c, lx, ly, hx, hy in segs:
-            for key in grid.segments_near(lx, ly, hx + clr, hy + clr):
+        for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
+            for key in grid.segments_near(lx, ly, hx + clr, hy + clr) if keys is None else keys[k]:
                 # The box first: most candidates are far, and the order of skips is free.
                 qlx, qly, qhx, qhy, p, q = boxes[key]
                 if lx > qhx or qlx - clr > hx or ly > qhy or qly - clr > hy or key in ignore:
@@ -705,9 +795,38 @@ class Solver:
                 if x == v or x == w or y == v or y == w:
                     continue
                 if seg_distance(a, c, p, q) < clr:
-                    self._fail(Rejection.CROSSING)
-                    return False
-        return True
+                    return True
+        return False
+
+    def _slides_meet(self, pos: dict[int, Point], segs, ignore) -> bool:
+        """Whether a slide's own edges, moved with it, come within the clearance of the
+        sample's edges, of another slide's or of the drawing. Within one slide nothing moves
+        apart. Against the drawing, only the edges near where a slid edge was are tried: a
+        translation by δ moves every point of it by |δ|, so it cannot reach an edge that lay
+        farther than |δ| and the clearance from it."""
+        clr, hpos = self.clearance, self.host.pos
+        moved = []
+        for a, slide in sorted(self.slides.items()):
+            own = self._segments(pos, [(x, 0, y, 0, None, None) for x, y in slide.edges])
+            if _segments_meet(own, segs, clr) or any(_segments_meet(own, o, clr) for o in moved):
+                return True
+            moved.append(own)
+            reach = math.hypot(pos[a][0] - hpos[a][0], pos[a][1] - hpos[a][1]) + clr
+            if self._meets_drawing(own, ignore, self._near_slide(slide, reach)):
+                return True
+        return False
+
+    def _near_slide(self, slide: Slide, reach: float) -> list[list]:
+        """Per edge of `slide` (as it lies now), the drawing's edges within `reach` of its
+        box, or more: kept for the solver's life, made again only for a larger reach."""
+        got = self._slide_near.get(slide.anchor)
+        if got is None or got[0] < reach:
+            r = max(reach, 2.0 * (got[0] if got else 0.0), 0.5 * self.host.t.unit)
+            own = self._segments({}, [(x, 0, y, 0, None, None) for x, y in slide.edges])
+            near = [list(self.host.grid.segments_near(lx - r, ly - r, hx + r, hy + r))
+                    for _, _, _, _, lx, ly, hx, hy in own]
+            got = self._slide_near[slide.anchor] = (r, near)
+        return got[1]
 
     def _segments(self, pos: dict[int, Point], edges) -> list[tuple]:
         """Each edge of a sample: its ends (ids), their points and its box, the low ends
@@ -893,12 +1012,18 @@ class SystemCache:
         return fact
 
 
-def _factorise(kind: tuple[int, ...], edges) -> Factor:
+def _slid_pos(slide: Slide) -> float:
+    # A slide moves all its vertices: the projection is charged as if each moved alone (the
+    # squares of their moves add up), so a large part gives way less than a corner.
+    return OLD_POS / math.sqrt(1 + len(slide.offsets))
+
+
+def _factorise(pos_scale: tuple[float, ...], edges) -> Factor:
     """`A` over (positions of the free vertices, edge lengths): row pair e says
     p_w − p_v − s_e d_e = (fixed ends moved to b), then one row per fixed length. An edge of
     the shape is (free index of v or −1, of w or −1, direction, fixed length, frame side,
-    drawn: new, not an existing edge kept)."""
-    nF, nE = len(kind), len(edges)
+    drawn: new, not an existing edge kept); `pos_scale`: each free vertex's column scale."""
+    nF, nE = len(pos_scale), len(edges)
     fixed = [e for e, (_, _, _, f, _, _) in enumerate(edges) if f is not None]
     A = np.zeros((2 * nE + len(fixed), 2 * nF + nE))
     # Cell by cell: on systems of this size numpy's index arrays cost more than the loop
@@ -912,7 +1037,7 @@ def _factorise(kind: tuple[int, ...], edges) -> Factor:
             A[2 * e + c, 2 * nF + e] = -d[c]
     A[2 * nE + np.arange(len(fixed)), 2 * nF + np.asarray(fixed, dtype=int)] = 1.0
     scale = np.empty(2 * nF + nE)
-    scale[:2 * nF] = np.repeat(POS_SCALE[np.asarray(kind, dtype=int)], 2)
+    scale[:2 * nF] = np.repeat(pos_scale, 2)
     scale[2 * nF:] = [FRAME_SIDE if side else DRAWN_LENGTH if drawn else LENGTH
                       for *_, side, drawn in edges]
     M = A * scale
@@ -962,8 +1087,9 @@ def repair(x: np.ndarray, n: int, fact: "Factor", lo: np.ndarray, hi: np.ndarray
     return None
 
 
-def _right_hand_side(shape_edges, edges, pos) -> list[float]:
-    """b: the fixed ends' positions, then the fixed lengths."""
+def _right_hand_side(shape_edges, edges, pos, attached) -> list[float]:
+    """b: the fixed ends' positions (a slide's member: its offset from its anchor, whose
+    column it shares), then the fixed lengths."""
     b = []
     for (iv, iw, _, _, _, _), (v, _, w, _, _, _) in zip(shape_edges, edges):
         bx = by = 0.0
@@ -971,13 +1097,34 @@ def _right_hand_side(shape_edges, edges, pos) -> list[float]:
             pw = pos[w]
             bx -= pw[0]
             by -= pw[1]
+        elif w in attached:
+            bx -= attached[w][1]
+            by -= attached[w][2]
         if iv < 0:
             pv = pos[v]
             bx += pv[0]
             by += pv[1]
+        elif v in attached:
+            bx += attached[v][1]
+            by += attached[v][2]
         b += (bx, by)
     b.extend(f for _, _, _, f, _, _ in shape_edges if f is not None)
     return b
+
+
+def _segments_meet(segs, others, clr: float) -> bool:
+    """Whether two segments (of `segs` among themselves when `others` is None, else one of
+    each) come within `clr` of each other, but where they share an end. Boxes first, since
+    most candidates are far: boxes farther apart than the clearance hold no closer pair."""
+    for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
+        for v2, w2, a2, c2, lx2, ly2, hx2, hy2 in segs[k + 1:] if others is None else others:
+            if v2 == v or v2 == w or w2 == v or w2 == w:
+                continue
+            if lx > hx2 or lx2 > hx or ly > hy2 or ly2 > hy:
+                continue
+            if seg_distance(a, c, a2, c2) < clr:
+                return True
+    return False
 
 
 def _dist(p: Point, q: Point) -> float:
