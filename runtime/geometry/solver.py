@@ -145,6 +145,8 @@ class Solver:
         self.slides: dict[int, Slide] = {}
         self.attached: dict[int, tuple[int, float, float]] = {}     # member → anchor, offset
         self._slide_near: dict[int, tuple[float, list]] = {}       # see _near_slide
+        self._no_slide: set[tuple[int, int]] = set()                # failed edges without one
+        self._consts: dict[tuple, tuple[float, float, float]] = {}  # see _constants
         self.blamed: dict[int, int] = {}        # edge label → failed lengths, for messages
         self._label_bounds: dict[int, tuple] = {}       # see _bounds_of
         self.tol = min(1e-7 * host.t.unit, LENGTH_NOISE)
@@ -315,19 +317,25 @@ class Solver:
     def _slide(self, ends: tuple[int, int], free: list[int], fs: set[int]) -> bool:
         """Free the part beyond a held end of the failed edge `ends` as one unit (slides.py),
         the smaller part where both ends are held; False when neither end has one."""
+        if ends in self._no_slide:
+            return False
         v, w = ends
         d, need = self.culprit_need[ends]
-        best = None
-        hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
+        best, hung = None, None
         # The edge runs from v to w along d: beyond w is +d, beyond v is −d.
         for held, other, sign in ((w, v, 1), (v, w, -1)):
             if held in fs or held in self.host.pinned:
                 continue
+            if hung is None:
+                hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
             s = sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
                              hung | {other}, d, sign, need, fs)
             if s is not None and (best is None or len(s.offsets) < len(best.offsets)):
                 best = s
         if best is None:
+            # Later rounds blame the same edge more often than not, and the search would
+            # mostly find no part again.
+            self._no_slide.add(ends)
             return False
         self.slides[best.anchor] = best
         for m, (ox, oy) in best.offsets.items():
@@ -382,16 +390,15 @@ class Solver:
         """The system's edges, each once: (v, slot, w, slot, direction, label)."""
         host, t = self.host, self.host.t
         edges, seen = [], set()       # the slots of the edges listed
-        attached = self.attached
+        slides, attached = self.slides, self.attached
         for a in free:
             # A slide's edges are those from any of its members to what is not in it.
-            slide = self.slides.get(a)
+            slide = slides.get(a) if slides else None
             for v in (a, *slide.offsets) if slide is not None else (a,):
                 pv = self.prim(v)
                 for i, s in self.adjacency(v):
-                    if (v, i) in seen:
-                        continue
-                    if slide is not None and (s[0] == a or attached.get(s[0], (None,))[0] == a):
+                    if (v, i) in seen or slide is not None \
+                            and (s[0] == a or attached.get(s[0], (None,))[0] == a):
                         continue
                     seen.add(s)
                     edges.append((v, i, *s, t.direction[pv][i], t.label[pv][i]))
@@ -449,7 +456,7 @@ class Solver:
         constant) lies outside its class's range: then every sample fails."""
         tol = self.tol
         for e in fact.fixed_idx:
-            lt, ht = self._edge_bounds(edges[e], self._known(edges[e], kept[e]))
+            _, lt, ht = self._constants(edges[e], kept[e])
             if not (c[e] > tol and lt <= c[e] <= ht):
                 self._blame(edges[e], (lt if c[e] < lt else tol) - c[e] if c[e] <= ht
                             else ht - c[e])
@@ -518,11 +525,10 @@ class Solver:
         for e, edge in enumerate(edges):
             lab = edge[-1]
             l, h, fixed, tile = t.lengths[lab]
-            kn = self._known(edge, kept[e])
+            kn, lt, ht = self._constants(edge, kept[e])
             known.append(kn)
             if kn != kn:
                 drawn.append(e)
-            lt, ht = self._edge_bounds(edge, kn)
             lo.append(l)
             hi.append(h if ht < math.inf else math.inf)     # a chord's draw has no top either
             lo_tol.append(lt)
@@ -538,6 +544,17 @@ class Solver:
         now (not one to draw)."""
         prim, link = self.host.prim, self.host.link
         return [v in prim and link[v][i] == (w, j) for v, i, w, j, _, _ in edges]
+
+    def _constants(self, edge, kept: bool) -> tuple[float, float, float]:
+        """An edge's known length (`_known`) and bounds (`_edge_bounds`): the same in every
+        round of the solver (the host is as it was whenever a round is built), and most
+        edges come back in each round, so they are worked out once."""
+        key = (edge[0], edge[1], edge[2], edge[3], kept)
+        got = self._consts.get(key)
+        if got is None:
+            kn = self._known(edge, kept)
+            got = self._consts[key] = (kn, *self._edge_bounds(edge, kn))
+        return got
 
     def _known(self, edge, kept: bool) -> float:
         """An edge's length known in advance: fixed by its class, or kept (an existing edge,
