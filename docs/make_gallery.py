@@ -87,6 +87,9 @@ def draw_scene(s: Scene, out: Path, quick: bool, page_dir: Path) -> list[str]:
         extent = ["--extent", s.extent] if s.extent else []
         res = tool(["report.ggrun", str(s.source), "--iterations", str(n), "--seed",
                     str(s.seed), "--out", str(png), "--width", "800", *extent])
+        if res.returncode != 0:
+            # An error is not a result to show: the page keeps its last good version.
+            raise RuntimeError(f"{s.name}, {n} iterations: {summary(res)}")
         cells.append((f"{n:,} iterations", png.name if png.exists() else "", summary(res)))
     row += ["| " + " | ".join(c[0] for c in cells) + " |",
             "|" + "---|" * len(cells),
@@ -115,7 +118,11 @@ def main(argv=None) -> int:
         "[scenes.md](scenes.md) for how frames work and what is still open.", ""]
     for s in SCENES:
         print(f"{s.name} …", flush=True)
-        text += draw_scene(s, args.out.resolve(), args.quick, args.page.resolve().parent)
+        try:
+            text += draw_scene(s, args.out.resolve(), args.quick, args.page.resolve().parent)
+        except RuntimeError as e:
+            print(f"not written: {e}", file=sys.stderr)
+            return 1
     args.page.write_text("\n".join(text), encoding="utf-8")
     print(f"wrote {args.page}")
     return 0
