@@ -346,9 +346,8 @@ class Solver:
     def _range_now(self, v: int, i: int, w: int, j: int) -> tuple[float, float, float]:
         """An existing edge's range (as a kept edge's, _edge_bounds) and its length now."""
         t, pv = self.host.t, self.prim(v)
-        edge = (v, i, w, j, t.direction[pv][i], t.label[pv][i])
-        now = self._known(edge, True)
-        return (*self._edge_bounds(edge, now), now)
+        now, lt, ht = self._constants((v, i, w, j, t.direction[pv][i], t.label[pv][i]), True)
+        return lt, ht, now
 
     def _nearest_held(self, ends: tuple[int, int], free: set[int]) -> list[int]:
         """The vertices not yet free (nor pinned) nearest the edge `ends`, by breadth-first
@@ -458,8 +457,7 @@ class Solver:
         for e in fact.fixed_idx:
             _, lt, ht = self._constants(edges[e], kept[e])
             if not (c[e] > tol and lt <= c[e] <= ht):
-                self._blame(edges[e], (lt if c[e] < lt else tol) - c[e] if c[e] <= ht
-                            else ht - c[e])
+                self._blame(edges[e], _need(c[e], c[e], lt, ht, tol))
                 return True
         return False
 
@@ -476,8 +474,7 @@ class Solver:
             ce += c[e]
             top = ce + sp
             if top <= tol or top < rd.lo_tol[e] or ce - sp > rd.hi_tol[e]:
-                self._blame(rd.edges[e], max(rd.lo_tol[e], tol) - top if ce - sp <= rd.hi_tol[e]
-                            else rd.hi_tol[e] - (ce - sp))
+                self._blame(rd.edges[e], _need(ce - sp, top, rd.lo_tol[e], rd.hi_tol[e], tol))
                 return Rejection.LENGTH_RANGE
         return rd
 
@@ -659,12 +656,11 @@ class Solver:
             worst, blamed = 0.0, None
             for e, (s, lt, ht) in enumerate(zip(lengths, rd.lo_tol, rd.hi_tol)):
                 if not (s > tol and lt <= s <= ht):
-                    miss = max(lt, tol) - s if s <= ht else s - ht
-                    if blamed is None or miss > worst:
-                        worst, blamed = miss, e
+                    need = _need(s, s, lt, ht, tol)
+                    if blamed is None or abs(need) > abs(worst):
+                        worst, blamed = need, e
             if blamed is not None:
-                s, lt, ht = lengths[blamed], rd.lo_tol[blamed], rd.hi_tol[blamed]
-                self._blame(rd.edges[blamed], max(lt, tol) - s if s <= ht else ht - s)
+                self._blame(rd.edges[blamed], worst)
                 self._fail(Rejection.EDGE_LENGTH)
                 return None
         pos = {v: (xs[2 * k], xs[2 * k + 1]) for k, v in enumerate(free)}
@@ -1127,6 +1123,12 @@ def _right_hand_side(shape_edges, edges, pos, attached) -> list[float]:
         b += (bx, by)
     b.extend(f for _, _, _, f, _, _ in shape_edges if f is not None)
     return b
+
+
+def _need(low: float, high: float, lo: float, hi: float, tol: float) -> float:
+    """How much longer a length that ranges over [low, high] had to be to meet its class
+    [lo, hi] and be positive (tol: the least positive length): negative when shorter."""
+    return max(lo, tol) - high if low <= hi else hi - low
 
 
 def _segments_meet(segs, others, clr: float) -> bool:
