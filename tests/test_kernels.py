@@ -57,8 +57,8 @@ import json
 import numpy as np
 from grammar_lang.blas import pin_blas_threads
 pin_blas_threads()
-from runtime.geometry.pinv import pinv
-pinv(np.eye(3))                 # loads scipy's own OpenBLAS, after the pinning
+from runtime.geometry.min_norm import min_norm_inverse
+min_norm_inverse(np.eye(3))               # loads scipy's own OpenBLAS, after the pinning
 from threadpoolctl import threadpool_info
 print(json.dumps([[i.get("filepath"), i.get("num_threads"), i.get("architecture")]
                   for i in threadpool_info() if i.get("internal_api") == "openblas"]))

@@ -45,7 +45,7 @@ from grammar_lang.algorithms.components import DisjointSet
 from grammar_lang.frame import spans_the_space
 
 from .change import Change, HostView
-from .pinv import pinv
+from .min_norm import min_norm_inverse
 from .rejections import Rejection
 from .slides import Slide, sliding_part
 from .spatial import Point, seg_distance
@@ -431,7 +431,7 @@ class Solver:
             fact = self.cache.put(shape, _factorise(*shape))
         bl = _right_hand_side(shape[1], edges, host.pos, self.attached)
         b = np.array(bl)
-        res = (b - fact.M.dot(fact.Mp.dot(b))).tolist()
+        res = (b - fact.M.dot(fact.Minv.dot(b))).tolist()
         # As numpy's max(|·|, initial=0): a NaN anywhere makes the test false.
         worst = max(map(abs, res), default=0.0)
         if worst > 1e-7 * t.unit * (1.0 + max(map(abs, bl), default=0.0) / t.unit) \
@@ -442,7 +442,7 @@ class Solver:
         if not self.strict:
             return self._round(free, edges, kept, fact, b)
         # Half the castle's rounds fail here: tested before the round's constants are made.
-        c = (fact.scale_len * fact.Mp_len.dot(b)).tolist()
+        c = (fact.scale_len * fact.Minv_len.dot(b)).tolist()
         if self._fixed_out(edges, kept, fact, c):
             return Rejection.LENGTH_FIXED
         rd = self._round(free, edges, kept, fact, b)
@@ -621,7 +621,7 @@ class Solver:
         target = self._targets(rd, f)
         # ndarray.dot: the same BLAS product as @, without the ufunc machinery (half the cost).
         fact = rd.fact
-        x = target + fact.scale * fact.Mp.dot(rd.b - fact.A.dot(target))
+        x = target + fact.scale * fact.Minv.dot(rd.b - fact.A.dot(target))
         nF = len(free)
         drawn = x
         # Only for a change the cost wants: a part under its share is often one that needs
@@ -858,16 +858,17 @@ class Solver:
 
 @dataclass
 class _Round:
-    """A round's system (its edges, matrix, right-hand side, column scales, pseudo-inverse)
-    and constants: free vertices' base coordinates (old: where they are, new: their aim, nan:
-    no aim, the change's centre per sample), which coordinates are new (`moving`) and which
-    of those have no aim; edge lengths known in advance (fixed, or kept; nan: drawn), which
-    edges are drawn, their class bounds, where drawn ones are centred, the tiled edges. Lists
-    of indices, so that a sample's loops visit only the coordinates it changes. Draw ranges
-    and what the crossing tests leave out are made once, when first needed."""
+    """A round's system (its edges, matrix, right-hand side, column scales, minimum-norm
+    inverse) and constants: free vertices' base coordinates (old: where they are, new: their
+    aim, nan: no aim, the change's centre per sample), which coordinates are new (`moving`)
+    and which of those have no aim; edge lengths known in advance (fixed, or kept; nan:
+    drawn), which edges are drawn, their class bounds, where drawn ones are centred, the
+    tiled edges. Lists of indices, so that a sample's loops visit only the coordinates it
+    changes. Draw ranges and what the crossing tests leave out are made once, when first
+    needed."""
 
     edges: list
-    fact: Factor             # the system's matrix, column scales and pseudo-inverse
+    fact: Factor             # the system's matrix, column scales and minimum-norm inverse
     b: np.ndarray
     base: list
     moving: list
@@ -937,18 +938,18 @@ class _Round:
 
 @dataclass(frozen=True)
 class Factor:
-    """What a system's shape alone fixes: its matrix, column scales and their pseudo-inverse,
+    """What a system's shape alone fixes: its matrix, column scales and a minimum-norm inverse,
     the rows of lengths that no target moves, and whether the solution is unique."""
 
     A: np.ndarray
     scale: np.ndarray
     M: np.ndarray
-    Mp: np.ndarray
+    Minv: np.ndarray
     R: np.ndarray
     fixed_idx: list          # the lengths that no target moves
     unique: bool
     absR: np.ndarray
-    Mp_len: np.ndarray       # the rows of Mp and of the scales for the lengths
+    Minv_len: np.ndarray     # the rows of Minv and of the scales for the lengths
     scale_len: np.ndarray
     P_len: np.ndarray        # the null-space projection's columns for the lengths (`repair`)
     # By tiled edges: the system with their lengths pinned. Kept with the shape, since the
@@ -956,15 +957,15 @@ class Factor:
     _pinned: dict = field(default_factory=dict)
 
     def pinned_system(self, tiled: tuple[int, ...], nF: int) -> tuple[np.ndarray, np.ndarray]:
-        """A with a row pinning each tiled length, and its pseudo-inverse: the same for every
-        sample (only the pinned values change)."""
+        """A with a row pinning each tiled length, and its minimum-norm inverse: the same for
+        every sample (only the pinned values change)."""
         pinned = self._pinned.get(tiled)
         if pinned is None:
             rows = np.zeros((len(tiled), self.A.shape[1]))
             for r, e in enumerate(tiled):
                 rows[r, 2 * nF + e] = 1.0
             A2 = np.vstack([self.A, rows])
-            pinned = self._pinned[tiled] = (A2, pinv(A2))
+            pinned = self._pinned[tiled] = (A2, min_norm_inverse(A2))
         return pinned
 
     def project_pinned(self, x: np.ndarray, n: int, pins: dict[int, float]) -> np.ndarray | None:
@@ -975,7 +976,7 @@ class Factor:
         The step d from `x` lies in the system's null space and is the shortest that sets the
         pinned lengths: d = P[:, E] · P[E, E]⁻¹ · r, with P the projection onto the null space
         (`P_len`: its columns for the lengths), E the pinned lengths and r how far each is
-        from its pin. A k×k solve, where a pseudo-inverse of the pinned system took 20 times
+        from its pin. A k×k solve, where an inverse of the pinned system took 20 times
         as long and, made for every sample's pins, tripled the castle's time."""
         idx = np.fromiter(pins, dtype=int, count=len(pins))
         r = np.fromiter(pins.values(), dtype=float, count=len(pins)) - x[n + idx]
@@ -1004,7 +1005,7 @@ def _least_squares(G: np.ndarray, r: np.ndarray) -> np.ndarray:
 class SystemCache:
     """Factorisations by system shape. A move's system depends only on its topology (which
     vertices are free and old, each edge's ends, direction and fixed length), never on where
-    the old vertices are, and the same shapes come back step after step: one pinv each.
+    the old vertices are, and the same shapes come back step after step: one inverse each.
     Bounded: when full the least recently used shape goes. Emptying it instead threw away
     the shapes of the matches being retried (on the castle, 1,600 of 9,900 factorisations
     were of a shape seen before)."""
@@ -1054,12 +1055,12 @@ def _factorise(pos_scale: tuple[float, ...], edges) -> Factor:
     scale[2 * nF:] = [FRAME_SIDE if side else DRAWN_LENGTH if drawn else LENGTH
                       for *_, side, drawn in edges]
     M = A * scale
-    Mp = pinv(M)
-    P = np.eye(A.shape[1]) - scale[:, None] * (Mp @ A)
+    Minv = min_norm_inverse(M)
+    P = np.eye(A.shape[1]) - scale[:, None] * (Minv @ A)
     R = P[2 * nF:]
     fixed_rows = np.abs(R).max(axis=1, initial=0.0) < 1e-9
-    return Factor(A, scale, M, Mp, R, np.flatnonzero(fixed_rows).tolist(),
-                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R), Mp[2 * nF:],
+    return Factor(A, scale, M, Minv, R, np.flatnonzero(fixed_rows).tolist(),
+                  bool(np.abs(P).max(initial=0.0) < 1e-9), np.abs(R), Minv[2 * nF:],
                   scale[2 * nF:], np.ascontiguousarray(P[:, 2 * nF:]))
 
 
@@ -1162,8 +1163,8 @@ def place_side(host: HostView, side, rng: np.random.Generator,
     (aimed at one spot they would almost always cross); how to arrange them is the caller's
     choice. Open half-edges stay open. The flag says whether every test held: a component
     for which `tries` rounds of samples find no placement is placed keeping only the
-    directions and positive lengths (no class ranges, fixed lengths, tiles or crossings). `host` must
-    be empty; it is left unchanged. ValueError when not even that is possible."""
+    directions and positive lengths (no class ranges, fixed lengths, tiles or crossings).
+    `host` must be empty; it is left unchanged. ValueError when not even that is possible."""
     assert len(host) == 0, "place_side draws on an empty host"
     out, strict = [], True
     for comp in side.components():
