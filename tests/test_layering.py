@@ -53,7 +53,7 @@ RUNTIME_LAYOUT = {
     "engine": {"host", "matching", "rewrite", "schedule", "costs", "generate",
                "free_host", "free_match", "free_engine", "late"},
     "geometry": {"solver", "slides", "spatial", "faces", "landing", "framing", "tables",
-                 "change", "rejections", "pinv"},
+                 "change", "rejections", "min_norm"},
     "output": {"drawing", "svg_out", "bending", "graphml_out", "free_svg"},
     "repl": {"session", "commands", "complete"},
     "": {"cli", "run_cmd", "interrupt", "verifier"},

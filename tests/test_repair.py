@@ -21,7 +21,7 @@ def _polygon(directions):
 
 
 def _project(fact, b, target):
-    return target + fact.scale * fact.Mp.dot(b - fact.A.dot(target))
+    return target + fact.scale * fact.Minv.dot(b - fact.A.dot(target))
 
 
 def _repair(fact, x, n, lo, hi, pins=None):
