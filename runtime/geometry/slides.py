@@ -68,7 +68,7 @@ def sliding_part(host: HostView, adjacency: Callable, prim: Callable[[int], int]
     tol = 1e-6 * t.unit
     h0 = pos[held]
     ux, uy = sign * d[0], sign * d[1]
-    part, todo, edges, seams = {held}, [held], [], 0
+    part, todo = {held}, [held]
     # (The failed edge's other end may be new, with no place yet: free, it is never reached.)
     stay = {v for v in others if v not in free
             and (pos[v][0] - h0[0]) * ux + (pos[v][1] - h0[1]) * uy < -tol}
@@ -79,8 +79,6 @@ def sliding_part(host: HostView, adjacency: Callable, prim: Callable[[int], int]
             if y in free:
                 continue
             if y in part:
-                if (x, i) < (y, j):
-                    edges.append((x, y))
                 continue
             dx = t.direction[px][i]
             stretches = t.lengths[t.label[px][i]][2] is None \
@@ -95,14 +93,22 @@ def sliding_part(host: HostView, adjacency: Callable, prim: Callable[[int], int]
                 px0 = pos[x]
                 grow = need if (px0[0] - py[0]) * ux + (px0[1] - py[1]) * uy > 0 else -need
                 if lo <= now + grow <= hi:
-                    seams += 1
                     continue
             if y in stay or not movable or len(part) >= limit:
                 return None
             part.add(y)
             todo.append(y)
-            if (x, i) < (y, j):
-                edges.append((x, y))
+    # Read off the part once it is whole: an edge taken for a seam when first met may join
+    # two members in the end (a wall top reached again from its other end), and is then the
+    # part's own, to be tested for crossings where it goes, and no seam.
+    edges, seams = [], 0
+    for x in sorted(part):
+        for i, (y, j) in adjacency(x):
+            if y in part:
+                if (x, i) < (y, j):
+                    edges.append((x, y))
+            elif y not in free:
+                seams += 1
     if len(part) < 2 or not seams:
         # Held by nothing but the new part, the part is a whole structure: sliding it would
         # only move it, not make room (a floating station moved aside for its own truss).
