@@ -26,6 +26,7 @@ class Rejection(str, Enum):
     OUTSIDE_FRAME = "outside the frame"
     COINCIDENT = "coincident vertices"
     CROSSING = "crossing"                      # an edge crosses or touches another
+    CLOSE = "close to a far part"              # within the gap of a part far in the graph
     FACE_LABELS = "face labels"                # a face would get the wrong label
     NO_PLACEMENT = "no placement"
     # hand-written productions (free_engine)

@@ -88,7 +88,11 @@ SHRINK = 0.75
 _LOW, _HIGH = 0.5, 1.8
 GROW_MAX = SHRINK ** -6
 # Failures that a smaller sample may avoid (a part squeezed between old vertices).
-CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT)
+CROWDED = (Rejection.CROSSING, Rejection.COINCIDENT, Rejection.CLOSE)
+# Parts this many edges apart or more in the graph (or not joined at all) keep the gap
+# between them (Tables.gap), not just the clearance. In the paper's four examples, vertices
+# and edges 3 edges apart come as close as 20 px, and 4 apart no closer than 44 px.
+FAR_HOPS = 4
 # How far a length may miss its class's range (numerical noise): a ten-millionth of the unit,
 # but never more than the verifier's 2e-6 leaves once a drawing's coordinates are rounded to
 # 6 decimals (each end moves up to 0.71e-6). At 1e-7 of a 40 px unit (4e-6) a kept edge at
@@ -134,7 +138,7 @@ class Solver:
         # A part placed in a frame with nothing around it may also be drawn larger than the
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
-        self.clearance = host.t.clearance
+        self.clearance, self.gap = host.t.clearance, host.t.gap
         self._adjacency: dict[int, list] = {}
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""
@@ -789,7 +793,91 @@ class Solver:
                 or slides and self._slides_meet(pos, segs, ignore):
             self._fail(Rejection.CROSSING)
             return False
+        if self.gap > clr and self._crowds(pos, segs, ignore, rd):
+            self._fail(Rejection.CLOSE)
+            return False
         return True
+
+    def _crowds(self, pos, segs, ignore, rd: "_Round") -> bool:
+        """Whether the sample's edges, or a slide's own edges, come within the gap of a part
+        far from them (`_near_far_part`)."""
+        border = self.host.border_labels
+        sides = [e[-1] in border for e in rd.edges]
+        if self._near_far_part(segs, sides, ignore, rd):
+            return True
+        for slide in self.slides.values():
+            own = self._segments(pos, [(x, 0, y, 0, None, None) for x, y in slide.edges])
+            own_sides = [self._label(x, y) in border for x, y in slide.edges]
+            if self._near_far_part(own, own_sides, ignore, rd, (segs, sides)):
+                return True
+        return False
+
+    def _label(self, v: int, w: int) -> int:
+        """The label of the drawing's edge from v to w."""
+        for i, s in enumerate(self.host.link[v]):
+            if s is not None and s[0] == w:
+                return self.host.t.label[self.host.prim[v]][i]
+        raise KeyError((v, w))
+
+    def _near_far_part(self, segs, sides, ignore, rd: "_Round", against=None) -> bool:
+        """Whether one of `segs` comes within the gap of an edge it shares no end with and
+        that is far from it: of the drawing, or of `against` (segments and their `sides`;
+        None: of `segs` themselves). Far: one of the two a frame's side (`sides`: per
+        segment; the frame is not a part), else neither end of the other within FAR_HOPS − 1
+        edges of either of its own (`_hood`, made when first needed: most samples have no
+        edge that near). Drawing edges that a slide moves are tested where they go, by the
+        caller, not where they lay."""
+        grid, gap, t = self.host.grid, self.gap, self.host.t
+        boxes, link, prim, border = grid.boxes, self.host.link, self.host.prim, \
+            self.host.border_labels
+        moving = self.attached.keys() | self.slides.keys() if self.slides else ()
+        widen = gap - self.clearance
+        for k, (v, w, a, c, lx, ly, hx, hy) in enumerate(segs):
+            lx, ly, hx, hy = lx - widen, ly - widen, hx + gap, hy + gap
+            for key in grid.segments_near(lx, ly, hx, hy):
+                qlx, qly, qhx, qhy, p, q = boxes[key]
+                if lx > qhx or qlx > hx or ly > qhy or qly > hy or key in ignore:
+                    continue
+                x = key[0]
+                y = link[x][key[1]][0]
+                if moving and x in moving and y in moving:
+                    continue
+                if self._too_near(v, w, a, c, x, y, p, q, rd,
+                                  sides[k] or t.label[prim[x]][key[1]] in border):
+                    return True
+            pool = zip(segs[k + 1:], sides[k + 1:]) if against is None else zip(*against)
+            for (x, y, p, q, qlx, qly, qhx, qhy), side in pool:
+                if lx > qhx or qlx > hx or ly > qhy or qly > hy:
+                    continue
+                if self._too_near(v, w, a, c, x, y, p, q, rd, sides[k] or side):
+                    return True
+        return False
+
+    def _too_near(self, v, w, a, c, x, y, p, q, rd: "_Round", side: bool) -> bool:
+        """Whether edges v–w (from a to c) and x–y (from p to q) share no end, come within the
+        gap, and are far apart: one of them a frame's side, or x and y out of their hood."""
+        if x == v or x == w or y == v or y == w or seg_distance(a, c, p, q) >= self.gap:
+            return False
+        if side:
+            return True
+        near = self._hood(v, rd) | self._hood(w, rd)
+        return x not in near and y not in near
+
+    def _hood(self, v: int, rd: "_Round") -> frozenset:
+        """The vertices within FAR_HOPS − 1 edges of `v` in the drawing as the change leaves
+        it, not counting a way along the frame (its sides are as long as the frame: through
+        them every corner is near whatever stands on one). The same in every sample of a
+        round, so kept with it."""
+        got = rd.hoods.get(v)
+        if got is None:
+            t, border = self.host.t, self.host.border_labels
+            layer, seen = {v}, {v}
+            for _ in range(FAR_HOPS - 1):
+                layer = {u for x in layer for i, (u, _) in self.adjacency(x)
+                         if t.label[self.prim(x)][i] not in border} - seen
+                seen |= layer
+            got = rd.hoods[v] = frozenset(seen)
+        return got
 
     def _meets_drawing(self, segs, ignore, keys=None) -> bool:
         """Whether one of `segs` comes within the clearance of an edge of the drawing (but
@@ -883,6 +971,7 @@ class _Round:
     lo_tol: list             # the class bounds widened by the tolerance
     hi_tol: list
     context: tuple | None = None     # what the crossing tests leave out (_planar_context)
+    hoods: dict = field(default_factory=dict)   # vertex → those near it in the graph (_hood)
     unrepaired: int = 0              # samples in a row `repair` found no point for
     _ranges: dict = field(default_factory=dict)
     _clip: tuple | None = None       # clip_box's, made once

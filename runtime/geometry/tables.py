@@ -49,6 +49,16 @@ class Tables(Vocabular):
         return max(c, 1e-9 * u)
 
     @functools.cached_property
+    def gap(self) -> float:
+        """How far apart parts that are far apart in the graph must stay (FAR_HOPS in the
+        solver): a tenth of the unit, never less than the clearance. The examples keep
+        theirs a unit or more apart (the paper's four: 40-100 px at 40 px a unit); at the
+        clearance alone a blossom was drawn 1 px from another plant's, and read as touching.
+        A quarter of the unit cost the paper's castle, flowers and station 8-12 % of their
+        vertices at the paper's N; a tenth, 0-5 %."""
+        return max(0.1 * self.unit, self.clearance)
+
+    @functools.cached_property
     def one_face_label(self) -> bool:
         """Every face has the same label, so no placement can put a face in the wrong place."""
         return all(l == self.exterior and r == self.exterior for l, r in self.label_faces)
