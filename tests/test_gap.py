@@ -78,3 +78,14 @@ def test_corpus_drawings_keep_far_parts_apart(name):
     eng.run(600)
     assert len(eng.host.pos) > 300
     assert crowded_pairs(eng.host) == []
+
+
+def test_a_slide_may_own_an_edge_the_change_glues():
+    # The village at the original settings' extent, seed 65: at its 2,221st iteration a slide
+    # took in an edge that the move glues, which the drawing does not have yet; reading its
+    # label from the drawing failed (KeyError), where the change's view has it.
+    grammar = _grammar(str(ILLUSTRATIONS / "village.gg"))
+    eng = Engine(grammar, seed=65, cost=default_cost(grammar.header, 4200),
+                 extent=(2720.0, 1600.0))
+    assert eng.run(None, iterations=2300).applied > 0
+    assert crowded_pairs(eng.host) == []

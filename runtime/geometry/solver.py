@@ -813,11 +813,10 @@ class Solver:
         return False
 
     def _label(self, v: int, w: int) -> int:
-        """The label of the drawing's edge from v to w."""
-        for i, s in enumerate(self.host.link[v]):
-            if s is not None and s[0] == w:
-                return self.host.t.label[self.host.prim[v]][i]
-        raise KeyError((v, w))
+        """The label of the edge from v to w in the drawing as the change leaves it (a slide's
+        own edge may be one the change glues)."""
+        return next(self.host.t.label[self.prim(v)][i]
+                    for i, (u, _) in self.adjacency(v) if u == w)
 
     def _near_far_part(self, segs, sides, ignore, rd: "_Round", against=None) -> bool:
         """Whether one of `segs` comes within the gap of an edge it shares no end with and
