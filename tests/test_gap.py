@@ -5,8 +5,8 @@ Checked on the drawings themselves, by a reading of its own (networkx distances 
 finished drawing, where the solver asks per sample): no vertex comes within the gap of an
 edge that is far from it. Far is more than FAR_HOPS edges away, or not joined at all, not
 counting ways along the frame; a frame's side is far from everything not on it. The
-drawings are the paper's four scenes, grown with the default cost, and corpus examples
-grown by size.
+drawings are the paper's four scenes and the shipped examples, grown with the default cost,
+and corpus examples grown by size.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 import networkx as nx
 import pytest
 
-from conftest import CORPUS, ILLUSTRATIONS
+from conftest import CORPUS, ILLUSTRATIONS, ROOT
 from runtime.engine.costs import SizeCost, default_cost
 from runtime.engine.generate import Engine
 from runtime.geometry.solver import FAR_HOPS
@@ -67,6 +67,14 @@ def test_the_paper_scenes_keep_far_parts_apart(name, seed):
     grammar = _grammar(str(ILLUSTRATIONS / f"{name}.gg"))
     eng = Engine(grammar, seed=seed, cost=default_cost(grammar.header, 600))
     assert eng.run(None, iterations=600).applied > 0
+    assert crowded_pairs(eng.host) == []
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "examples").glob("*.gg")), ids=lambda p: p.name)
+def test_shipped_examples_keep_far_parts_apart(path):
+    grammar = _grammar(str(path))
+    eng = Engine(grammar, seed=1, cost=default_cost(grammar.header, 300))
+    assert eng.run(None, iterations=300).applied > 0
     assert crowded_pairs(eng.host) == []
 
 
