@@ -49,10 +49,8 @@ def test_outer_label_of_each_starter(wall):
 def test_windows_land_inside_stone(wall):
     # Windows are components of their own whose outside is stone: only the window starter
     # makes them, and the face test refuses one placed anywhere but inside a wall. Aimed into
-    # stone corners, most proposals land (a random place near a random vertex: about one in
-    # eight). 0.8 of them did while a window could touch its wall; it must now keep the gap
-    # from it (Tables.gap, a tenth of the unit), and 0.63 do. Every drawing passes the
-    # verifier.
+    # stone corners, nearly every proposal lands (a random place near a random vertex: about
+    # one in eight). Every drawing passes the verifier.
     grammar = wall
     tried = landed = 0
     for seed in range(5):
@@ -65,4 +63,4 @@ def test_windows_land_inside_stone(wall):
                 tried += 1
                 landed += out.applied is not None
         assert check_drawing(grammar, engine.host.to_drawing()) == []
-    assert tried >= 50 and landed >= 0.55 * tried
+    assert tried >= 50 and landed >= 0.8 * tried

@@ -138,7 +138,11 @@ class Solver:
         # A part placed in a frame with nothing around it may also be drawn larger than the
         # unit: a big module whose cycles close only with long sides (a space station's).
         self.f_max = GROW_MAX if floating and host.frame is not None else 1.0
-        self.clearance, self.gap = host.t.clearance, host.t.gap
+        # The gap is a scene's (a framed drawing's). Unframed grammars grown by size pack
+        # their parts densely, and with it they drew twice the samples per step (h-complex
+        # at 5,000 vertices: 9.6 against 4.4).
+        self.clearance = host.t.clearance
+        self.gap = host.t.gap if host.frame is not None else self.clearance
         self._adjacency: dict[int, list] = {}
         self.failures: dict[Rejection, int] = {}
         self.last_failure = ""

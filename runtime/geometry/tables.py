@@ -50,8 +50,8 @@ class Tables(Vocabular):
 
     @functools.cached_property
     def gap(self) -> float:
-        """How far apart parts that are far apart in the graph must stay (FAR_HOPS in the
-        solver): a tenth of the unit, never less than the clearance. The examples keep
+        """How far apart parts that are far apart in the graph must stay in a framed scene
+        (FAR_HOPS in the solver): a tenth of the unit, never less than the clearance. The examples keep
         theirs a unit or more apart (the paper's four: 40-100 px at 40 px a unit); at the
         clearance alone a blossom was drawn 1 px from another plant's, and read as touching.
         A quarter of the unit cost the paper's castle, flowers and station 8-12 % of their
