@@ -153,6 +153,7 @@ class Solver:
         self.slides: dict[int, Slide] = {}
         self.attached: dict[int, tuple[int, float, float]] = {}     # member → anchor, offset
         self._slide_near: dict[int, tuple[float, list]] = {}       # see _near_slide
+        self._slide_sides: dict[int, list[bool]] = {}               # see _crowds
         self._no_slide: set[tuple[int, int]] = set()                # failed edges without one
         self._consts: dict[tuple, tuple[float, float, float]] = {}  # see _constants
         self.blamed: dict[int, int] = {}        # edge label → failed lengths, for messages
@@ -806,13 +807,18 @@ class Solver:
         """Whether the sample's edges, or a slide's own edges, come within the gap of a part
         far from them (`_near_far_part`)."""
         border = self.host.border_labels
-        sides = [e[-1] in border for e in rd.edges]
+        if rd.sides is None:
+            rd.sides = [e[-1] in border for e in rd.edges]
+        sides = rd.sides
         if self._near_far_part(segs, sides, ignore, rd):
             return True
-        for slide in self.slides.values():
-            own = self._segments(pos, [(x, 0, y, 0, None, None) for x, y in slide.edges])
-            own_sides = [self._label(x, y) in border for x, y in slide.edges]
-            if self._near_far_part(own, own_sides, ignore, rd, (segs, sides)):
+        for a, slide in self.slides.items():
+            own_sides = self._slide_sides.get(a)
+            if own_sides is None:
+                own_sides = self._slide_sides[a] = [self._label(x, y) in border
+                                                    for x, y in slide.edges]
+            if self._near_far_part(self._own_segments(pos, slide), own_sides, ignore, rd,
+                                   (segs, sides)):
                 return True
         return False
 
@@ -911,7 +917,7 @@ class Solver:
         clr, hpos = self.clearance, self.host.pos
         moved = []
         for a, slide in sorted(self.slides.items()):
-            own = self._segments(pos, [(x, 0, y, 0, None, None) for x, y in slide.edges])
+            own = self._own_segments(pos, slide)
             if _segments_meet(own, segs, clr) or any(_segments_meet(own, o, clr) for o in moved):
                 return True
             moved.append(own)
@@ -926,11 +932,15 @@ class Solver:
         got = self._slide_near.get(slide.anchor)
         if got is None or got[0] < reach:
             r = max(reach, 2.0 * (got[0] if got else 0.0), 0.5 * self.host.t.unit)
-            own = self._segments({}, [(x, 0, y, 0, None, None) for x, y in slide.edges])
+            own = self._own_segments({}, slide)
             near = [list(self.host.grid.segments_near(lx - r, ly - r, hx + r, hy + r))
                     for _, _, _, _, lx, ly, hx, hy in own]
             got = self._slide_near[slide.anchor] = (r, near)
         return got[1]
+
+    def _own_segments(self, pos: dict[int, Point], slide: Slide) -> list[tuple]:
+        """`_segments` of a slide's own edges, its members at `pos` (or where they lie)."""
+        return self._segments(pos, [(x, 0, y, 0, None, None) for x, y in slide.edges])
 
     def _segments(self, pos: dict[int, Point], edges) -> list[tuple]:
         """Each edge of a sample: its ends (ids), their points and its box, the low ends
@@ -974,6 +984,7 @@ class _Round:
     lo_tol: list             # the class bounds widened by the tolerance
     hi_tol: list
     context: tuple | None = None     # what the crossing tests leave out (_planar_context)
+    sides: list | None = None        # per edge, whether it is a frame's side (_crowds)
     hoods: dict = field(default_factory=dict)   # vertex → those near it in the graph (_hood)
     unrepaired: int = 0              # samples in a row `repair` found no point for
     _ranges: dict = field(default_factory=dict)
