@@ -512,7 +512,7 @@ def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
     """At the paper's N iterations, at its seed and at seeds 0-4, with the default cost, the
     drawing holds every face label and every edge class of the example, inside its frame,
     and passes the verifier. (The castle at seed 0 had no keep until a wanted change's
-    lengths were repaired by pinning, solver.repair: alternating projections stalled on a
+    lengths were repaired by pinning, system.repair: alternating projections stalled on a
     keep squeezed onto a block top, and the keep's tiles, rounded after, broke what they
     had fitted. A change that let framed moves split once took the castle's keeps, windows
     and roofs away at seed 80: half its face labels; the shorter runs above still passed.
@@ -521,7 +521,7 @@ def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
     seed 9 it had none until a structure stood on a stretch of ground was aimed where its
     footprint fits: the keep's, about 400 px wide, placed beside the first structure 3
     times in 30 when aimed anywhere along the stretch. At seed 18 it had none when
-    every first-round sample had its lengths repaired, a version of solver.repair tried and
+    every first-round sample had its lengths repaired, a version of system.repair tried and
     not kept: its 145 tries at a keep on a block top failed on lengths.)"""
     from runtime.engine.costs import default_cost
     n = PAPER_RUNS[name][0]

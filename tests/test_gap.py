@@ -25,7 +25,8 @@ from grammar_lang.loader import load_example
 from runtime.engine.costs import SizeCost, default_cost
 from runtime.engine.generate import Engine
 from runtime.engine.rewrite import plan
-from runtime.geometry.solver import FAR_HOPS, Solver
+from runtime.geometry.planarity import FAR_HOPS
+from runtime.geometry.solver import Solver
 
 
 @lru_cache(maxsize=None)

@@ -97,7 +97,7 @@ def _lengths(host) -> dict[tuple[int, int], float]:
 
 @pytest.mark.parametrize("name", ["castle", "space-station"])
 def test_no_step_squeezes_an_old_edge_below_its_floor(name):
-    """New lengths are stiffer than the old drawing (solver.DRAWN_LENGTH), so freed old
+    """New lengths are stiffer than the old drawing (system.DRAWN_LENGTH), so freed old
     vertices give way; an old edge may then be shortened, but never below its floor unless it
     was shorter already (it squeezed the castle's old towers into slivers)."""
     _, grammar = _compiled(str(ILLUSTRATIONS / f"{name}.gg"))

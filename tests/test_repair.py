@@ -1,4 +1,4 @@
-"""The solver's length repair (runtime/geometry/solver.py, `repair`): the point of the system
+"""The solver's length repair (runtime/geometry/system.py, `repair`): the point of the system
 nearest a sample whose lengths lie in their box, found by pinning the lengths out of it."""
 
 import dataclasses
@@ -9,7 +9,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from runtime.geometry.solver import _factorise, repair
+from runtime.geometry.system import factorise, repair
 
 
 def _polygon(directions):
@@ -17,7 +17,7 @@ def _polygon(directions):
     direction fixed; unknowns are the positions, then the lengths."""
     k = len(directions)
     edges = [(e, (e + 1) % k, d, None, False, True) for e, d in enumerate(directions)]
-    return _factorise((2,) * k, edges), np.zeros(2 * k)
+    return factorise((2,) * k, edges), np.zeros(2 * k)
 
 
 def _project(fact, b, target):
