@@ -340,7 +340,9 @@ def test_in_a_frame_nothing_floats_but_what_the_example_has_free_standing(seed):
     assert_only_starters_float(host, g)
 
 
-def test_the_default_scene_cost_keeps_every_part_in_proportion():
+# Two items, so that the suite's two workers share their 16 runs.
+@pytest.mark.parametrize("kind", ["scene", "size"])
+def test_the_default_scene_cost_keeps_every_part_in_proportion(kind):
     """In a frame the default cost holds each face label's share of the edges near the
     example's: windows do not crowd out keeps and gates as the run grows, and none fades.
     By size alone roofs reach 1.8-2.4 times their share (median 2.1 over seeds 0-7) and
@@ -369,8 +371,10 @@ def test_the_default_scene_cost_keeps_every_part_in_proportion():
         return all(0.75 <= statistics.median(rs) <= 1.35 and min(rs) >= 0.55
                    for rs in per_group)
 
-    assert in_proportion(cost)
-    assert not in_proportion(SizeCost(400))
+    if kind == "scene":
+        assert in_proportion(cost)
+    else:
+        assert not in_proportion(SizeCost(400))
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
@@ -505,13 +509,19 @@ PAPER_RUNS = {"castle": (4000, 80), "flowers": (2000, 42), "space-station": (400
               "village": (4000, 65)}
 
 
-@pytest.mark.parametrize("name, seed", [(name, seed) for name in NAMES
-                                        for seed in (PAPER_RUNS[name][1], 0, 1, 2, 3, 4)]
-                         + [("castle", 9), ("castle", 18)])
+# Each run takes 8-18 s on the 2-core machine, and at six seeds per scene these runs were
+# two fifths of the suite's time. The suite keeps the paper's seed and seed 0 for each scene,
+# and the castle's seeds that once lost a part (docstring below); seeds 0-4 of every scene
+# are `benchmarks/paper.py --seeds 0-4`, which counts the drawings that hold every part.
+PAPER_N_SEEDS = [(name, seed) for name in NAMES for seed in (PAPER_RUNS[name][1], 0)] \
+    + [("castle", 2), ("castle", 9), ("castle", 18)]
+
+
+@pytest.mark.parametrize("name, seed", PAPER_N_SEEDS)
 def test_at_the_papers_n_every_label_and_class_is_drawn(name, seed):
-    """At the paper's N iterations, at its seed and at seeds 0-4, with the default cost, the
-    drawing holds every face label and every edge class of the example, inside its frame,
-    and passes the verifier. (The castle at seed 0 had no keep until a wanted change's
+    """At the paper's N iterations, at the seeds above, with the default cost, the drawing
+    holds every face label and every edge class of the example, inside its frame, and
+    passes the verifier. (The castle at seed 0 had no keep until a wanted change's
     lengths were repaired by pinning, system.repair: alternating projections stalled on a
     keep squeezed onto a block top, and the keep's tiles, rounded after, broke what they
     had fitted. A change that let framed moves split once took the castle's keeps, windows
