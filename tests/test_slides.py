@@ -15,7 +15,7 @@ from report.ggrun import compile_example
 from runtime.engine.costs import default_cost
 from runtime.engine.generate import Engine
 from runtime.geometry import solver as solver_module
-from runtime.geometry.slides import LIMIT, PARALLEL, sliding_part
+from runtime.geometry.slides import LIMIT, PARALLEL, NoPart, Slide, sliding_part
 from runtime.run_cmd import load_grammar
 
 
@@ -44,12 +44,13 @@ def _bounds(host):
 
 @settings(max_examples=150, deadline=None)
 @given(pick=st.integers(0, 10 ** 6), sign=st.sampled_from((1, -1)),
-       need=st.floats(-80.0, 80.0))
-def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need):
-    """Whatever edge failed and by how much: every edge from the part to the rest of the
-    drawing is a seam, parallel to the failed edge and of free length, so a translation
-    along it keeps every direction; the part holds neither end it must leave, no pinned
-    vertex, no more than LIMIT vertices, and each member's offset is where it lies."""
+       need=st.floats(-80.0, 80.0), far=st.booleans())
+def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need, far):
+    """Whatever edge failed and by how much, with seams at the cut or further beyond (FAR):
+    every edge from the part to the rest of the drawing is a seam, parallel to the failed
+    edge and of free length, so a translation along it keeps every direction; the part holds
+    neither end it must leave, no pinned vertex, no more than LIMIT vertices, and each
+    member's offset is where it lies."""
     host = castle
     slots = sorted((v, i) for v in host.link for i, s in enumerate(host.link[v]) if s is not None)
     v, i = slots[pick % len(slots)]
@@ -58,8 +59,9 @@ def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need):
     d = t.direction[host.prim[v]][i]
     held, other = (w, v) if sign == 1 else (v, w)
     part = sliding_part(host, _adjacency(host), host.prim.__getitem__, _bounds(host), held,
-                        {other}, d, sign, need, frozenset())
-    if part is None:
+                        {other}, d, sign, need, frozenset(), far=far)
+    if not isinstance(part, Slide):
+        assert part in (NoPart.HELD, NoPart.OTHER)
         return
     members = {part.anchor, *part.offsets}
     assert other not in members and not members & host.pinned and len(members) <= LIMIT
@@ -98,5 +100,36 @@ def test_castle_steps_place_by_sliding(monkeypatch):
     grammar = load_grammar(str(ILLUSTRATIONS / "castle.gg"), compile_example)
     eng = Engine(grammar, seed=1, cost=default_cost(grammar.header, 800))
     for _ in range(800):
+        eng.step()
+    assert placed
+
+
+def test_the_village_places_by_sliding_a_house_along_a_surface(monkeypatch):
+    """The paper's village: a new strip's step needs a longer stretch of the surface it
+    starts from, and everything beyond the stretch is held by the frame (the surface runs
+    from side to side), so no part has its seams at the cut alone. With seams further beyond
+    (slides.FAR) a house and the stretch past it give the room, and some of the village's
+    placements come from such slides."""
+    from runtime.geometry import freeing
+    far_parts, placed = set(), []
+    real_part, real_placements = freeing.sliding_part, solver_module.Solver.placements
+
+    def sliding_part(*args, far=False, **kw):
+        part = real_part(*args, far=far, **kw)
+        if far and isinstance(part, Slide):
+            far_parts.add(id(part))
+        return part
+
+    def placements(self):
+        for p in real_placements(self):
+            if any(id(s) in far_parts for s in self.slides.values()):
+                placed.append(p)
+            yield p
+
+    monkeypatch.setattr(freeing, "sliding_part", sliding_part)
+    monkeypatch.setattr(solver_module.Solver, "placements", placements)
+    grammar = load_grammar(str(ILLUSTRATIONS / "village.gg"), compile_example)
+    eng = Engine(grammar, seed=65, cost=default_cost(grammar.header, 1500))
+    for _ in range(1500):
         eng.step()
     assert placed

@@ -5,7 +5,7 @@ vertices, `slides`, `attached`)."""
 
 from __future__ import annotations
 
-from .slides import sliding_part
+from .slides import NoPart, Slide, sliding_part
 
 # How many layers out from a failed edge `_free_one` looks for vertices to free.
 HOPS = 4
@@ -50,17 +50,23 @@ class Freeing:
             return False
         v, w = ends
         d, need = self.culprit_need[ends]
-        best, hung = None, None
-        # The edge runs from v to w along d: beyond w is +d, beyond v is −d.
-        for held, other, sign in ((w, v, 1), (v, w, -1)):
-            if held in fs or held in self.host.pinned:
-                continue
-            if hung is None:
-                hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
-            s = sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
-                             hung | {other}, d, sign, need, fs)
-            if s is not None and (best is None or len(s.offsets) < len(best.offsets)):
-                best = s
+        best, hung, held_fast = None, None, False
+        # The edge runs from v to w along d: beyond w is +d, beyond v is −d. Seams further
+        # beyond only where what lies beyond the cut is held fast (slides.FAR).
+        for far in (False, True):
+            for held, other, sign in ((w, v, 1), (v, w, -1)):
+                if held in fs or held in self.host.pinned:
+                    continue
+                if hung is None:
+                    hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
+                s = sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
+                                 hung | {other}, d, sign, need, fs, far=far)
+                if not isinstance(s, Slide):
+                    held_fast = held_fast or s is NoPart.HELD
+                elif best is None or len(s.offsets) < len(best.offsets):
+                    best = s
+            if best is not None or not held_fast:
+                break
         if best is None:
             # Later rounds blame the same edge more often than not, and the search would
             # mostly find no part again.
