@@ -14,10 +14,11 @@ join it to the rest of the drawing: moving it along d changes their lengths and 
 Such an edge is left out of the part (a seam, where the drawing stretches or gives way) when
 its other end lies on the near side of a cut through the held end, across d, or cannot move
 (a pinned corner, a vertex on a side of the frame not parallel to d), and when its class lets
-it take the length the failed edge lacked; otherwise its other end joins the part. No slide
-is a part that would need the failed edge's other end (or an old vertex on the near side
-that the new part hangs from), a vertex that cannot move, or more than `limit` vertices, nor
-one without a seam: held by the new part alone, it is a whole structure, and sliding it
+it take the length the failed edge lacked; otherwise its other end joins the part (where
+that reaches a vertex that cannot move, the search may be made again with seams further
+beyond as well: FAR below). No slide is a part that would need the failed edge's other end
+(or an old vertex on the near side that the new part hangs from), a vertex that cannot move,
+or more than `limit` vertices, nor one without a seam: held by the new part alone, it is a whole structure, and sliding it
 would only move it. The projection charges the anchor as if each vertex of the part moved
 alone, and repairs the round's samples (Solver._repairing), since the seams are kept lengths,
 soft in the projection.
