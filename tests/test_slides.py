@@ -84,52 +84,47 @@ def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need, f
     assert sorted(part.edges) == sorted(own)
 
 
-def test_castle_steps_place_by_sliding(monkeypatch):
-    """On the paper's castle some placements come from rounds that slid a part, and every
-    drawing made so stays valid (the corpus and scene tests check the drawings)."""
+def _slid_placements(monkeypatch, name: str, seed: int, n: int, slid) -> list:
+    """The placements found in `n` iterations of the paper's `name` by solvers that
+    `slid(solver)` says slid a part."""
     placed = []
     real = solver_module.Solver.placements
 
     def placements(self):
         for p in real(self):
-            if self.slides:
-                placed.append(len(self.slides))
+            if slid(self):
+                placed.append(p)
             yield p
 
     monkeypatch.setattr(solver_module.Solver, "placements", placements)
-    grammar = load_grammar(str(ILLUSTRATIONS / "castle.gg"), compile_example)
-    eng = Engine(grammar, seed=1, cost=default_cost(grammar.header, 800))
-    for _ in range(800):
+    grammar = load_grammar(str(ILLUSTRATIONS / f"{name}.gg"), compile_example)
+    eng = Engine(grammar, seed=seed, cost=default_cost(grammar.header, n))
+    for _ in range(n):
         eng.step()
-    assert placed
+    return placed
+
+
+def test_castle_steps_place_by_sliding(monkeypatch):
+    """On the paper's castle some placements come from rounds that slid a part, and every
+    drawing made so stays valid (the corpus and scene tests check the drawings)."""
+    assert _slid_placements(monkeypatch, "castle", 1, 800, lambda solver: bool(solver.slides))
 
 
 def test_the_village_places_by_sliding_a_house_along_a_surface(monkeypatch):
-    """The paper's village: a new strip's step needs a longer stretch of the surface it
-    starts from, and everything beyond the stretch is held by the frame (the surface runs
-    from side to side), so no part has its seams at the cut alone. With seams further beyond
-    (slides.FAR) a house and the stretch past it give the room, and some of the village's
-    placements come from such slides."""
+    """The paper's village: its strip lines and surfaces run from one side of the frame to
+    the other, so every part beyond a cut along them is held by the frame, and none has its
+    seams at the cut alone. With seams further beyond (slides.FAR) a house and the stretch
+    past it give the room, and some of the village's placements come from such slides."""
     from runtime.geometry import freeing
-    far_parts, placed = set(), []
-    real_part, real_placements = freeing.sliding_part, solver_module.Solver.placements
+    far_parts = set()
+    real = freeing.sliding_part
 
     def sliding_part(*args, far=False, **kw):
-        part = real_part(*args, far=far, **kw)
+        part = real(*args, far=far, **kw)
         if far and isinstance(part, Slide):
             far_parts.add(id(part))
         return part
 
-    def placements(self):
-        for p in real_placements(self):
-            if any(id(s) in far_parts for s in self.slides.values()):
-                placed.append(p)
-            yield p
-
     monkeypatch.setattr(freeing, "sliding_part", sliding_part)
-    monkeypatch.setattr(solver_module.Solver, "placements", placements)
-    grammar = load_grammar(str(ILLUSTRATIONS / "village.gg"), compile_example)
-    eng = Engine(grammar, seed=65, cost=default_cost(grammar.header, 1500))
-    for _ in range(1500):
-        eng.step()
-    assert placed
+    assert _slid_placements(monkeypatch, "village", 65, 1500, lambda solver: any(
+        id(part) in far_parts for part in solver.slides.values()))
