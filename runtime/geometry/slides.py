@@ -18,10 +18,10 @@ it take the length the failed edge lacked; otherwise its other end joins the par
 that reaches a vertex that cannot move, the search may be made again with seams further
 beyond as well: FAR below). No slide is a part that would need the failed edge's other end
 (or an old vertex on the near side that the new part hangs from), a vertex that cannot move,
-or more than `limit` vertices, nor one without a seam: held by the new part alone, it is a whole structure, and sliding it
-would only move it. The projection charges the anchor as if each vertex of the part moved
-alone, and repairs the round's samples (Solver._repairing), since the seams are kept lengths,
-soft in the projection.
+or more than `limit` vertices, nor one without a seam: held by the new part alone, it is a
+whole structure, and sliding it would only move it. The projection charges the anchor as if
+each vertex of the part moved alone, and repairs the round's samples (Solver._repairing),
+since the seams are kept lengths, soft in the projection.
 
 On the paper's castle at its N (seeds 0-7) the drawings cover 53 % of the frame, against 42 %
 without slides: its towers rise in tiers. The flowers, the village and the station draw
