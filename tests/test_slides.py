@@ -116,15 +116,15 @@ def test_the_village_places_by_sliding_a_house_along_a_surface(monkeypatch):
     seams at the cut alone. With seams further beyond (slides.FAR) a house and the stretch
     past it give the room, and some of the village's placements come from such slides."""
     from runtime.geometry import freeing
-    far_parts = set()
+    far_parts = {}      # id → part: held, so that no later part gets a far part's id
     real = freeing.sliding_part
 
     def sliding_part(*args, far=False, **kw):
         part = real(*args, far=far, **kw)
         if far and isinstance(part, Slide):
-            far_parts.add(id(part))
+            far_parts[id(part)] = part
         return part
 
     monkeypatch.setattr(freeing, "sliding_part", sliding_part)
     assert _slid_placements(monkeypatch, "village", 65, 1500, lambda solver: any(
-        id(part) in far_parts for part in solver.slides.values()))
+        far_parts.get(id(part)) is part for part in solver.slides.values()))

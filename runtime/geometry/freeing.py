@@ -50,23 +50,23 @@ class Freeing:
             return False
         v, w = ends
         d, need = self.culprit_need[ends]
-        best, hung, held_fast = None, None, False
-        # The edge runs from v to w along d: beyond w is +d, beyond v is −d. Seams further
-        # beyond only where what lies beyond the cut is held fast (slides.FAR).
-        for far in (False, True):
-            for held, other, sign in ((w, v, 1), (v, w, -1)):
-                if held in fs or held in self.host.pinned:
-                    continue
-                if hung is None:
-                    hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs}
-                s = sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
+        # The edge runs from v to w along d: beyond w is +d, beyond v is −d.
+        tries = [(held, other, sign) for held, other, sign in ((w, v, 1), (v, w, -1))
+                 if held not in fs and held not in self.host.pinned]
+        hung = {u for x in free for _, (u, _) in self.adjacency(x) if u not in fs} \
+            if tries else set()
+
+        def search(far: bool) -> list:
+            return [sliding_part(self.host, self.adjacency, self.prim, self._range_now, held,
                                  hung | {other}, d, sign, need, fs, far=far)
-                if not isinstance(s, Slide):
-                    held_fast = held_fast or s is NoPart.HELD
-                elif best is None or len(s.offsets) < len(best.offsets):
-                    best = s
-            if best is not None or not held_fast:
-                break
+                    for held, other, sign in tries]
+        found = search(False)
+        if NoPart.HELD in found and not any(isinstance(s, Slide) for s in found):
+            # A search met a vertex that cannot move: both ends again, with seams further
+            # beyond as well (slides.FAR).
+            found = search(True)
+        parts = [s for s in found if isinstance(s, Slide)]
+        best = min(parts, key=lambda s: len(s.offsets)) if parts else None
         if best is None:
             # Later rounds blame the same edge more often than not, and the search would
             # mostly find no part again.

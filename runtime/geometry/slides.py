@@ -15,13 +15,13 @@ Such an edge is left out of the part (a seam, where the drawing stretches or giv
 its other end lies on the near side of a cut through the held end, across d, or cannot move
 (a pinned corner, a vertex on a side of the frame not parallel to d), and when its class lets
 it take the length the failed edge lacked; otherwise its other end joins the part (where
-that reaches a vertex that cannot move, the search may be made again with seams further
-beyond as well: FAR below). No slide is a part that would need the failed edge's other end
-(or an old vertex on the near side that the new part hangs from), a vertex that cannot move,
-or more than `limit` vertices, nor one without a seam: held by the new part alone, it is a
-whole structure, and sliding it would only move it. The projection charges the anchor as if
-each vertex of the part moved alone, and repairs the round's samples (Solver._repairing),
-since the seams are kept lengths, soft in the projection.
+that reaches a vertex that cannot move, and no part is found, the search is made again with
+seams further beyond as well: FAR below). No slide is a part that would need the failed
+edge's other end (or an old vertex on the near side that the new part hangs from), a vertex
+that cannot move, or more than `limit` vertices, nor one without a seam: held by the new
+part alone, it is a whole structure, and sliding it would only move it. The projection
+charges the anchor as if each vertex of the part moved alone, and repairs the round's
+samples (Solver._repairing), since the seams are kept lengths, soft in the projection.
 
 On the paper's castle at its N (seeds 0-7) the drawings cover 53 % of the frame, against 42 %
 without slides: its towers rise in tiers. The flowers, the village and the station draw
@@ -42,7 +42,7 @@ from .spatial import Point
 # whole columns of the space station, whose trusses then shrank (34 % covered against 38 %),
 # and took the station 9.0 s at its N against 6.9 s.
 LIMIT = 40
-# FAR: where every part beyond the cut reaches a vertex that cannot move (a village's
+# FAR: where no part is found and a search reached a vertex that cannot move (a village's
 # surface runs from one side of the frame to the other, with its houses on it), a stretch
 # further beyond may be a seam as well, and shrink by what the failed edge lacked: the part
 # is then what lies between the cut and the nearest stretches that can give the room (a
