@@ -46,6 +46,18 @@ def forced_pairs(rings: Sequence[Sequence[int]]) -> list[tuple[int, int, int, in
     return out
 
 
+def forced_groups(rings: Sequence[Sequence[int]]) -> list[set[int]]:
+    """The primitives joined by forced pairs, as components: a complete graph that holds one
+    of a group's primitives holds every one of them."""
+    group = {p: {p} for p in range(len(rings))}
+    for p, _, q, _ in forced_pairs(rings):
+        if group[p] is not group[q]:
+            merged = group[p] | group[q]
+            for r in merged:
+                group[r] = merged
+    return list({id(g): g for g in group.values()}.values())
+
+
 def blocks(rings: Sequence[Sequence[int]], enabled: bool = True,
            loops: bool = True) -> list[Graph]:
     """The blocks the hierarchy is built from, each with its forced cycles closed (unless

@@ -24,6 +24,7 @@ from grammar_lang.rules import Grammar
 from .apply import apply, side_graph, wired_pairs
 from .canon import Key, canonical_key, split
 from .gluing import Graph, Slot, block_slots, children, primitive_graph
+from .grouping import forced_groups
 from .occurrence import Host, Pattern, matches
 
 
@@ -46,10 +47,16 @@ class VerifyResult:
 
 class _SizeBound:
     """How many vertices a partial graph still needs at least, from its open half-edges: those
-    of token t beyond the open ones of token t̄ must each meet a new vertex's t̄ slot."""
+    of token t beyond the open ones of token t̄ must each meet a new vertex's t̄ slot. And a
+    primitive of a forced group (companion §3.3) comes with every other primitive of its group
+    in a complete graph, so one whose group is larger than `max_prims` is never used: a rigid
+    blossom of nine vertices cannot be part of a complete graph of five."""
 
-    def __init__(self, rings: Sequence[Sequence[int]], prims: Sequence[Graph], max_prims: int):
+    def __init__(self, rings: Sequence[Sequence[int]], prims: Sequence[Graph], max_prims: int,
+                 groups: bool = True):
         self.rings, self.max_prims = rings, max_prims
+        self.too_large = {p for group in forced_groups(rings) if len(group) > max_prims
+                          for p in group} if groups else set()
         self.mult: dict[int, int] = {}
         for r in rings:
             for t in set(r):
@@ -81,7 +88,8 @@ class _SizeBound:
         return False
 
     def rejects(self, g: Graph) -> bool:
-        return len(g.verts) > self.max_prims or self.too_big(len(g.verts), self.open_counts(g))
+        return (len(g.verts) > self.max_prims or not self.too_large.isdisjoint(g.verts)
+                or self.too_big(len(g.verts), self.open_counts(g)))
 
     def admit_for(self, g: Graph) -> Callable[[Slot, int, Slot], bool]:
         """The bound applied to a branch gluing before the child is built. (The glued t and t̄
@@ -89,6 +97,8 @@ class _SizeBound:
         base, n = self.open_counts(g), len(g.verts)
 
         def admit(s: Slot, b: int, t: Slot) -> bool:
+            if b in self.too_large:
+                return False
             count = dict(base)
             for tok, c in self.prim_open[b].items():
                 count[tok] = count.get(tok, 0) + c
@@ -103,16 +113,19 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     """Every complete connected graph with at most `max_prims` vertices, and why the
     enumeration stopped early ("graph cap" after `cap` graphs, "time limit" at `deadline`, a
     `time.perf_counter()` value), or "". `progress(graphs seen, vertices)` after each size.
-    `prefilter` applies the size bound to a branch gluing before its child is built (the
-    same children are kept either way; without it is only for testing that)."""
+    `prefilter` applies the size bound to a branch gluing before its child is built and
+    leaves out the primitives of forced groups too large to fit (the same graphs are found
+    either way; without it is only for testing that)."""
     ring_len = [len(r) for r in rings]
     prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
     slots = block_slots(prims, rings)
-    bound = _SizeBound(rings, prims, max_prims)
+    bound = _SizeBound(rings, prims, max_prims, groups=prefilter)
     seen: set[Key] = set()
     out: list[Graph] = []
     frontier: list[Graph] = []
     for g in prims:
+        if not bound.too_large.isdisjoint(g.verts):
+            continue
         k = canonical_key(g, ring_len)
         if k not in seen:
             seen.add(k)
