@@ -46,17 +46,18 @@ class VerifyResult:
 
 
 class _SizeBound:
-    """How many vertices a partial graph still needs at least, from its open half-edges: those
-    of token t beyond the open ones of token t̄ must each meet a new vertex's t̄ slot. And a
-    primitive of a forced group (companion §3.3) comes with every other primitive of its group
-    in a complete graph, so one whose group is larger than `max_prims` is never used: a rigid
-    blossom of nine vertices cannot be part of a complete graph of five."""
+    """How many vertices a partial graph still needs at least. From its open half-edges: those
+    of token t beyond the open ones of token t̄ must each meet a new vertex's t̄ slot. And from
+    forced groups (companion §3.3): a complete graph that holds one primitive of a group holds
+    every other one too, so each primitive missing from a group the graph has begun is one
+    more vertex (a rigid blossom of nine primitives cannot be part of a complete graph of
+    five)."""
 
     def __init__(self, rings: Sequence[Sequence[int]], prims: Sequence[Graph], max_prims: int,
                  groups: bool = True):
         self.rings, self.max_prims = rings, max_prims
-        self.too_large = {p for group in forced_groups(rings) if len(group) > max_prims
-                          for p in group} if groups else set()
+        self.group = {p: frozenset(g) for g in forced_groups(rings) if len(g) > 1
+                      for p in g} if groups else {}
         self.mult: dict[int, int] = {}
         for r in rings:
             for t in set(r):
@@ -70,6 +71,11 @@ class _SizeBound:
             t = self.rings[g.verts[v]][i]
             count[t] = count.get(t, 0) + 1
         return count
+
+    def missing(self, present: set[int]) -> int:
+        """The primitives the groups begun in `present` still lack."""
+        begun = {self.group[p] for p in present if p in self.group}
+        return sum(len(g - present) for g in begun)
 
     def too_big(self, n: int, count: dict[int, int]) -> bool:
         """Whether `n` vertices with these open half-edges need more than `max_prims`: some
@@ -88,16 +94,24 @@ class _SizeBound:
         return False
 
     def rejects(self, g: Graph) -> bool:
-        return (len(g.verts) > self.max_prims or not self.too_large.isdisjoint(g.verts)
-                or self.too_big(len(g.verts), self.open_counts(g)))
+        n = len(g.verts)
+        return (n + self.missing(set(g.verts)) > self.max_prims
+                or self.too_big(n, self.open_counts(g)))
 
     def admit_for(self, g: Graph) -> Callable[[Slot, int, Slot], bool]:
         """The bound applied to a branch gluing before the child is built. (The glued t and t̄
         leave every token's excess over its opposite as it was: they are left in the count.)"""
         base, n = self.open_counts(g), len(g.verts)
+        present = set(g.verts)
+        lacking = self.missing(present)
+        begun = {self.group[p] for p in present if p in self.group}
 
         def admit(s: Slot, b: int, t: Slot) -> bool:
-            if b in self.too_large:
+            more = lacking
+            if b not in present and b in self.group:
+                grp = self.group[b]
+                more += -1 if grp in begun else len(grp) - 1
+            if n + 1 + more > self.max_prims:
                 return False
             count = dict(base)
             for tok, c in self.prim_open[b].items():
@@ -114,8 +128,8 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     enumeration stopped early ("graph cap" after `cap` graphs, "time limit" at `deadline`, a
     `time.perf_counter()` value), or "". `progress(graphs seen, vertices)` after each size.
     `prefilter` applies the size bound to a branch gluing before its child is built and
-    leaves out the primitives of forced groups too large to fit (the same graphs are found
-    either way; without it is only for testing that)."""
+    counts the primitives that forced groups still lack (the same graphs are found either
+    way; without it is only for testing that)."""
     ring_len = [len(r) for r in rings]
     prims = [primitive_graph(p, len(r)) for p, r in enumerate(rings)]
     slots = block_slots(prims, rings)
@@ -124,7 +138,7 @@ def complete_graphs(rings: Sequence[Sequence[int]], max_prims: int, loops: bool 
     out: list[Graph] = []
     frontier: list[Graph] = []
     for g in prims:
-        if not bound.too_large.isdisjoint(g.verts):
+        if len(g.verts) + bound.missing(set(g.verts)) > max_prims:
             continue
         k = canonical_key(g, ring_len)
         if k not in seen:
