@@ -7,7 +7,10 @@ compile`, `ggc primitives`, `ggrun FILE` with random options, `ggrun check`, `gg
 A case is an internal error (exit 70, or a traceback), a user error (exit 2), ok (exit 0, 1 or
 130) or a hang (over --timeout seconds). The goal is no internal error and no hang.
 
-    .venv/bin/python benchmarks/fuzz.py --n 1000 [--seed 0] [--timeout 30] [--show 5]
+    .venv/bin/python benchmarks/fuzz.py --n 1000 [--seed 0] [--timeout 30] [--show 5] [--keep DIR]
+
+With --keep, the input files of each internal error and hang are copied to DIR (as
+NUMBER-NAME, numbered as they are printed) so that they can be run again.
 """
 
 from __future__ import annotations
@@ -252,13 +255,28 @@ def run_case(case, timeout: float) -> tuple[str, str]:
     return "ok", ""
 
 
+def _keep(folder: Path, number: int, case) -> None:
+    """Copy the files a failed case read (its arguments that name files in the work folder),
+    and its REPL script, to `folder`."""
+    folder.mkdir(parents=True, exist_ok=True)
+    _, _, argv, stdin = case
+    for a in argv:
+        f = Path(a)
+        if f.is_file() and f.parent == Path.cwd():
+            shutil.copy(f, folder / f"{number}-{f.name}")
+    if stdin:
+        (folder / f"{number}-stdin.txt").write_text(stdin, encoding="utf-8", errors="replace")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, default=1000, help="number of random cases")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--timeout", type=float, default=30.0, help="seconds before a case hangs")
     ap.add_argument("--show", type=int, default=5, help="failures to print")
+    ap.add_argument("--keep", type=Path, help="copy the inputs of failures to this folder")
     args = ap.parse_args()
+    keep = args.keep.resolve() if args.keep is not None else None     # before the chdir
     work = Path(tempfile.mkdtemp(prefix="gg-fuzz-bench-"))
     os.chdir(work)          # REPL scripts and default output paths write relative files
     rng = random.Random(args.seed)
@@ -278,6 +296,8 @@ def main() -> int:
         counts.setdefault(case[0], Counter())[outcome] += 1
         if outcome in ("internal error", "hang/timeout"):
             failures.append((case, detail))
+            if keep is not None:
+                _keep(keep, len(failures), case)
     shutil.rmtree(work, ignore_errors=True)
     print(f"{len(cases)} cases ({args.n} random, seed {args.seed}, {len(sigs)} "
           f"signatures) in {time.perf_counter() - t0:.0f} s; slowest {slowest[0]:.1f} s "

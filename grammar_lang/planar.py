@@ -27,6 +27,12 @@ MERGE_FRACTION = 0.005    # default merge distance, as a fraction of the boundin
 # point on output while staying two vertices: the merge distance never goes below it.
 RESOLUTION = 1e-8
 MAX_DIAGNOSTICS = 20
+# How many times its shortest edge (or its merge distance, if longer) a drawing may span.
+# Noding tests "exactly on a line" to 1e-9 of the drawing's span; past this ratio that test is
+# coarser than a hundredth of the drawing's smallest feature, and a drawing that size (a point
+# at 1e11 beside a village of 1,600 px) split and re-merged its pieces round after round
+# until it ran out of memory.
+MAX_SPAN = 1e7
 
 
 @dataclass(frozen=True)
@@ -94,6 +100,7 @@ class _Builder:
         points: list[tuple[float, float]] = []
         segments: list[tuple[int, int, int]] = []
         self.items: list[_Source] = []
+        self.owner: list[int] = []          # per point, the item it belongs to
         for order, item in enumerate(self.source.paint):
             if isinstance(item, Region):
                 kind, chains = "region", [(ring, True) for ring in item.rings]
@@ -116,6 +123,7 @@ class _Builder:
                 base = len(points)
                 points.extend(chain)
                 n = len(chain)
+                self.owner.extend([sid] * n)
                 for k in range(n if closed and n > 2 else n - 1):
                     segments.append((base + k, base + (k + 1) % n, sid))
         self.check()
@@ -130,6 +138,7 @@ class _Builder:
     def build(self) -> ExampleGraph:
         points, segments = self.collect()
         d = merge_distance(self.source, points)
+        self.check_span(points, segments, d)
         centres, index = cluster(points, d)
         ends = index[segments[:, :2]]
         self.check_collapse(ends, segments[:, 2], d)
@@ -153,6 +162,24 @@ class _Builder:
         labels = self.face_labels(regions, cover, pieces, faces)
         self.check()
         return self.assemble(pieces, faces, labels, regions, cover)
+
+    def check_span(self, points: np.ndarray, segments: np.ndarray, d: float) -> None:
+        """Refuse a drawing that spans more than MAX_SPAN times its shortest edge (or merge
+        distance); the error points at the item holding the point furthest from the middle."""
+        span = float((points.max(axis=0) - points.min(axis=0)).max())
+        lengths = np.hypot(*(points[segments[:, 1]] - points[segments[:, 0]]).T)
+        lengths = lengths[lengths > 0]
+        if not len(lengths):
+            return
+        least = max(d, float(lengths.min()))
+        if span <= MAX_SPAN * least:
+            return
+        far = int(np.abs(points - np.median(points, axis=0)).max(axis=1).argmax())
+        self.report(f"the drawing spans {span:g}, more than {MAX_SPAN:g} times its shortest "
+                    f"edge ({least:g}): at that scale its points cannot be placed finely "
+                    "enough", self.items[self.owner[far]].paint.span,
+                    "move this shape nearer the others, or draw the example at one scale")
+        self.check()
 
     def check_collapse(self, ends: np.ndarray, sids: np.ndarray, d: float) -> None:
         alive = np.zeros(len(self.items), dtype=bool)

@@ -175,6 +175,25 @@ def test_huge_coordinates_are_reported_at_their_shape(far, recwarn):
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
 
 
+@pytest.mark.parametrize("far, merge", [(1e11, 1.0), (5e9, 1e-3), (1e10, 0.0)])
+def test_a_drawing_spanning_too_many_merge_distances_is_reported_at_its_far_shape(far, merge):
+    # A village of 1,600 px with one point at 1e11 (merge distance 1) once split and re-merged
+    # its pieces until it ran out of memory. (With the default merge distance, a fraction of
+    # the span, a far point makes the rest collapse instead, which is reported as such.)
+    span = Span("t.gg", 9, 1)
+    with pytest.raises(UserError) as info:
+        build(Region((rect(0, 0, 1600, 800),), "sky"), Region((rect(0, 0, 1600, 560),), "land"),
+              Region((((1440, 575), (1480, 575), (far, 630)),), "crown", span=span),
+              merge=merge)
+    (d,) = info.value.diagnostics
+    assert d.span == span and "spans" in d.message
+
+
+def test_a_drawing_within_the_span_limit_builds():
+    g = build(Region((rect(0, 0, 4, 4),), "a"), Stroke(((0, 0), (3e7, 0))), merge=1.0)
+    assert len(g.vertices) >= 4
+
+
 def test_custom_exterior_name():
     g = build(Region((rect(0, 0, 1, 1),), "land"), exterior="sea")
     assert {frozenset(e[2:4]) for e in g.edges} == {frozenset(("land", "sea"))}
