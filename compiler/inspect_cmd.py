@@ -9,6 +9,7 @@ from rich.console import Console
 from rich.table import Table
 
 from grammar_lang.example import Example
+from grammar_lang.frame import Frame, find_frame
 from grammar_lang.loader import load_example
 
 
@@ -19,7 +20,8 @@ def run(args) -> int:
     for note in example.notes:
         err.print(note.render(), markup=False)
     if args.command == "check":
-        out.print(summary(example), markup=False)
+        # A border that is not one closed loop, or a bent side, is an error here as in compile.
+        out.print(summary(example, find_frame(example)), markup=False)
     elif args.json:
         out.print_json(json.dumps(as_json(example)))
     else:
@@ -28,10 +30,13 @@ def run(args) -> int:
     return 0
 
 
-def summary(ex: Example) -> str:
+def summary(ex: Example, frame: Frame | None = None) -> str:
     parts = [f"ok: {ex.path}: '{ex.name}'"]
     if ex.graph is not None:
         parts.append(f"  {len(ex.graph.vertices)} vertices, {len(ex.graph.edges)} edges")
+    if frame is not None:
+        w, h = frame.size
+        parts.append(f"  frame: {len(frame.corners)} corners, {w:g} × {h:g}")
     parts.append(f"  {len(ex.face_labels)} face labels, {len(ex.labels)} edge labels, "
                  f"{len(ex.primitives)} primitives")
     parts.append(f"  unit {ex.unit:g}; classes: "

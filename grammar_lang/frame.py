@@ -178,9 +178,30 @@ def find_frame(ex) -> Frame | None:
                            "the border is more than one closed loop",
                            "an example has one frame; give other loops a class without `border`")
     rings = [ex.primitives[ex.vertex_primitive[v]].ring for v in loop]
-    corners = tuple(Corner(ex.vertex_primitive[v], *map(float, g.vertices[v]))
-                    for v, ring in zip(loop, rings) if _turns(ring, ex.labels, border))
-    return Frame(corners)
+    at = [v for v, ring in zip(loop, rings) if _turns(ring, ex.labels, border)]
+    corners = tuple(Corner(ex.vertex_primitive[v], *map(float, g.vertices[v])) for v in at)
+    frame = Frame(corners)
+    bent = crooked_side(frame, ex.primitives, ex.labels)
+    if bent is not None:
+        a, b = corners[bent], corners[(bent + 1) % len(corners)]
+        raise _frame_error(ex, around[at[bent]][0],
+                           f"the frame's side from {_at((a.x, a.y))} to {_at((b.x, b.y))} does "
+                           "not run along the direction its edges are labelled with",
+                           "draw the frame's sides straight, and keep other points off them: "
+                           "a point within the merge distance of a side is routed through it")
+    return frame
+
+
+def crooked_side(frame: Frame, primitives, labels) -> int | None:
+    """The first side (corner k to corner k + 1) that leaves corner k in no direction of its
+    half-edges (a side bent by a point routed through it, then snapped): generation could not
+    place such a frame."""
+    n = len(frame.corners)
+    for k in range(n):
+        a, b = frame.corners[k], frame.corners[(k + 1) % n]
+        if slot_towards(primitives[a.prim].ring, labels, b.x - a.x, b.y - a.y) is None:
+            return k
+    return None
 
 
 def _has_loop(around: dict[int, list[int]], edges) -> bool:

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import read_text
-from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, slot_towards
+from grammar_lang.frame import (Frame, bare_sides, border_labels, border_primitives,
+                                 crooked_side, slot_towards)
 
 from .change import HostView
 
@@ -31,6 +32,13 @@ def place_frame(host: HostView, frame: Frame, rng=None) -> None:
                     None, "leave some room between the frame's corners and the shapes "
                           "that stand on its sides, or compile the example again (a grammar "
                           "compiled today starts such a frame from the example's own)")
+    bent = crooked_side(frame, h.primitives, h.labels)
+    if bent is not None:
+        a, b = frame.corners[bent], frame.corners[(bent + 1) % len(frame.corners)]
+        raise error(f"the frame's side from ({a.x:g}, {a.y:g}) to ({b.x:g}, {b.y:g}) does not "
+                    "run along any direction of its corner's edges", None,
+                    "draw the frame's sides along their edges' directions, or compile the "
+                    "example again")
     ids = []
     for c in frame.corners:
         v = host.new_id()
