@@ -54,7 +54,7 @@ RUNTIME_LAYOUT = {
                "free_host", "free_match", "free_engine", "late"},
     "geometry": {"solver", "slides", "spatial", "faces", "landing", "framing", "tables",
                  "change", "rejections", "min_norm", "system", "rounds", "freeing",
-                 "planarity"},
+                 "planarity", "stands"},
     "output": {"drawing", "svg_out", "bending", "graphml_out", "free_svg"},
     "repl": {"session", "commands", "complete"},
     "": {"cli", "run_cmd", "interrupt", "verifier"},
