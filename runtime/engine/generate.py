@@ -30,8 +30,8 @@ from ..geometry.framing import place_frame, random_inside
 from ..geometry.landing import outer_label, sectors, spot
 from ..geometry.rejections import Rejection
 from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
-from ..geometry.stands import narrowest
 from ..geometry.spatial import Point
+from ..geometry.stands import narrowest
 from ..geometry.tables import Tables
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .host import Host
