@@ -84,3 +84,37 @@ def test_a_stand_on_a_gap_between_structures_is_refused_before_any_geometry(cast
                 assert host.pos == before
                 return
     pytest.fail("no stand matched a gap narrower than it")
+
+
+def test_no_part_places_closer_to_the_frame_than_it_must_reach(monkeypatch):
+    """The space station's module put above its top module: with the refusal off, the
+    proposals the reach test would refuse all fail (outside the frame, mostly), and with it
+    on they are refused before any geometry."""
+    grammar = load_grammar(str(ILLUSTRATIONS / "space-station.gg"), compile_example)
+    real = Engine._no_room
+    flagged = []
+
+    def no_room(self, change):
+        flagged.append(real(self, change))
+        return False
+
+    monkeypatch.setattr(Engine, "_no_room", no_room)
+    eng = Engine(grammar, seed=22, cost=default_cost(grammar.header, 4000))
+    seen = []
+    real_apply = eng.apply
+
+    def apply(move, match, *args, **kw):
+        flagged.clear()
+        out = real_apply(move, match, *args, **kw)
+        if any(flagged):
+            seen.append(out.applied is not None)
+        return out
+
+    eng.apply = apply
+    for _ in range(800):
+        eng.step()
+    assert len(seen) >= 20 and not any(seen)
+    monkeypatch.setattr(Engine, "_no_room", real)
+    eng = Engine(grammar, seed=22, cost=default_cost(grammar.header, 4000))
+    reasons = [eng.step().reason for _ in range(800)]
+    assert Rejection.FRAME_ROOM in reasons

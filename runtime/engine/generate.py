@@ -31,7 +31,7 @@ from ..geometry.landing import outer_label, sectors, spot
 from ..geometry.rejections import Rejection
 from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from ..geometry.spatial import Point
-from ..geometry.stands import narrowest
+from ..geometry.stands import joined, least_reach, narrowest
 from ..geometry.tables import Tables
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .host import Host
@@ -122,6 +122,8 @@ class Engine:
         self._outer: dict[int, str | None] = {}     # move → outer label of what it creates
         self._feet: dict[int, float] = {}           # move → its footprint (_footprint)
         self._narrowest: dict[int, float | None] = {}   # move → its narrowest stand (_too_short)
+        self._outside: set[int] = set()             # moves that failed outside the frame
+        self._reach: dict[int, list | None] = {}    # move → its least reach (_no_room)
         self.tables = Tables.build(grammar.header)
         self._corners = sectors(self.tables)
         self.systems = SystemCache()       # factorisations by system shape, across steps
@@ -278,6 +280,8 @@ class Engine:
                     return Outcome(None, Rejection.COST)
         if self._too_short(change):
             return Outcome(None, Rejection.NO_ROOM)
+        if self._no_room(change):
+            return Outcome(None, Rejection.FRAME_ROOM)
         fixed = self._center(change)
         # A free-standing new component may go anywhere: a fresh place for every sample.
         floating = self._floating(change)
@@ -310,6 +314,8 @@ class Engine:
         self._spent(key, solver, False)
         why = max(sorted(solver.failures), key=lambda k: solver.failures[k]) \
             if solver.failures else Rejection.NO_PLACEMENT
+        if why == Rejection.OUTSIDE_FRAME:
+            self._outside.add(id(change.rule))
         return Outcome(None, why, cut_short=solver.went_on is False)
 
     def _wanted(self, after: Stats | None) -> bool:
@@ -494,6 +500,29 @@ class Engine:
         (v, i), = change.cut
         host = self.host
         return math.dist(host.pos[v], host.pos[host.link[v][i][0]]) < least - 1e-6 * host.t.unit
+
+    def _no_room(self, change: Change) -> bool:
+        """Whether the new part of a move that has failed outside the frame before cannot
+        reach as little beyond an old vertex it hangs from as it must, before the frame's side
+        (stands.least_reach): a module put above the space station's top module, whose top
+        lies 35 px under the frame's. Asked only of such moves, in a rectangular frame."""
+        frame, host = self.host.frame, self.host
+        key = id(change.rule)
+        if frame is None or not frame.rectangle or key not in self._outside:
+            return False
+        if key not in self._reach:
+            self._reach[key] = least_reach(host, change)
+        reach = self._reach[key]
+        if reach is None:
+            return False
+        x0, y0, x1, y1 = frame.box
+        tol = 1e-6 * host.t.unit
+        for v, need in zip(joined(change), reach):
+            x, y = host.pos[v]
+            if any(room < least - tol for room, least in zip((x1 - x, x - x0, y1 - y, y - y0),
+                                                             need)):
+                return True
+        return False
 
     def _footprint(self, change: Change) -> float:
         """How much of a frame's side a structure stood on it covers at typical lengths: its

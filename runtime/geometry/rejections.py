@@ -22,6 +22,7 @@ class Rejection(str, Enum):
     LENGTH_FIXED = "length fixed out of range"  # the system fixes a length outside its class
     LENGTH_RANGE = "length out of range"       # no target in the sampling box can fit
     NO_ROOM = "stretch too short"              # a structure stood on a side's stretch: stands.py
+    FRAME_ROOM = "no room before the frame"    # a part reaching past a side: stands.py
     TILES = "tile lengths"                     # no whole number of tiles fits
     EDGE_LENGTH = "edge length"                # a sample broke a class's range
     OUTSIDE_FRAME = "outside the frame"

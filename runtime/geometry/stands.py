@@ -12,6 +12,16 @@ are mostly proposed on the gaps of a few pixels between two structures (the medi
 at seed 80: 4 px): 529 of 533 such proposals were on stretches under 100 px, none placed, and
 they took a third of the run's time (21 ms each, for one of them). The engine refuses such a
 proposal before any geometry (Engine.apply).
+
+The same holds towards the frame's sides for any new part: joined to an old vertex, it
+reaches at least some distance beyond it in each direction (`least_reach`, a linear program
+per direction and old vertex). Where the frame's side is nearer than that, the part cannot be
+placed unless that old vertex moves away from the side. The paper's space station proposed
+a module above its top module (`r19` backwards) 523 times at seed 22, whose top lies 35 px
+under the frame's: every one failed outside the frame, at 9.8 ms each, 41 % of the run. The
+engine asks this only of moves that have failed outside the frame before, in a rectangular
+frame; over the four illustrations at seeds 22, 42, 80 and 0, none of the proposals it would
+refuse placed.
 """
 
 from __future__ import annotations
@@ -69,3 +79,66 @@ def narrowest(host: HostView, change: Change) -> float | None:
     from scipy.optimize import linprog      # first use only: ggrun starts without scipy
     res = linprog(cost, A_eq=A, b_eq=np.zeros(2 * ne), bounds=bounds, method="highs")
     return float(res.x[2 * nv]) if res.status == 0 else None
+
+
+# Towards each side of a rectangular frame: +x, −x, +y, −y.
+SIDES = ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0))
+
+
+def least_reach(host: HostView, change: Change) -> list[tuple[float, ...]] | None:
+    """Per old vertex the change joins its new part to (in the order they first appear among
+    its glued edges) and per direction of SIDES: the least distance that some new vertex lies
+    beyond that old vertex that way, over every drawing of the part (the other old vertices
+    free, lengths within their classes, tiles and floors relaxed: a lower bound; −inf where
+    there is none). None for a change with no new vertex or no old one."""
+    t, new = host.t, dict(change.new)
+    olds = joined(change)
+    if not new or not olds:
+        return None
+    col = {v: 2 * k for k, v in enumerate(sorted(new))}
+    col.update({v: 2 * (len(new) + k) for k, v in enumerate(olds)})
+    npos, ne = 2 * (len(new) + len(olds)), len(change.glue)
+    cols = npos + ne + 1                         # positions, edge lengths, the reach
+    A = np.zeros((2 * ne, cols))
+    bounds: list = [(None, None)] * npos
+    for e, (a, b) in enumerate(change.glue):
+        v, k = a
+        prim = new.get(v, host.prim.get(v))
+        d, (lo, hi, fixed, _) = t.direction[prim][k], t.lengths[t.label[prim][k]]
+        bounds.append((fixed, fixed) if fixed is not None
+                      else (max(lo, 0.0), hi if hi < math.inf else None))
+        for c in (0, 1):
+            A[2 * e + c, col[b[0]] + c] += 1.0
+            A[2 * e + c, col[v] + c] -= 1.0
+            A[2 * e + c, npos + e] = -d[c]
+    bounds.append((None, None))
+    cost = np.zeros(cols)
+    cost[-1] = 1.0
+    from scipy.optimize import linprog      # first use only: ggrun starts without scipy
+    out = []
+    for c in olds:
+        pinned = list(bounds)
+        pinned[col[c]] = pinned[col[c] + 1] = (0.0, 0.0)
+        row = []
+        for dx, dy in SIDES:
+            # reach ≥ ⟨p_v, d⟩ for every new vertex v, with the old vertex c at the origin.
+            ub = np.zeros((len(new), cols))
+            for r, v in enumerate(sorted(new)):
+                ub[r, col[v]], ub[r, col[v] + 1], ub[r, -1] = dx, dy, -1.0
+            res = linprog(cost, A_ub=ub, b_ub=np.zeros(len(new)), A_eq=A,
+                          b_eq=np.zeros(2 * ne), bounds=pinned, method="highs")
+            row.append(float(res.x[-1]) if res.status == 0 else -math.inf)
+        out.append(tuple(row))
+    return out
+
+
+def joined(change: Change) -> list[int]:
+    """The old vertices a change glues its new part to, in the order they first appear among
+    its glued edges (the same order for every match of a move)."""
+    new = {v for v, _ in change.new}
+    out: list[int] = []
+    for a, b in change.glue:
+        for v in (a[0], b[0]):
+            if v not in new and v not in out:
+                out.append(v)
+    return out
