@@ -502,10 +502,10 @@ class Engine:
         return math.dist(host.pos[v], host.pos[host.link[v][i][0]]) < least - 1e-6 * host.t.unit
 
     def _no_room(self, change: Change) -> bool:
-        """Whether the new part of a move that has failed outside the frame before cannot
-        reach as little beyond an old vertex it hangs from as it must, before the frame's side
-        (stands.least_reach): a module put above the space station's top module, whose top
-        lies 35 px under the frame's. Asked only of such moves, in a rectangular frame."""
+        """Whether a side of the frame is nearer an old vertex the new part hangs from than
+        the part must reach beyond that vertex (stands.least_reach): a module put above the
+        space station's top module, whose top lies 35 px under the frame's. Asked only of
+        moves that have failed outside the frame before, in a rectangular frame."""
         frame, host = self.host.frame, self.host
         key = id(change.rule)
         if frame is None or not frame.rectangle or key not in self._outside:

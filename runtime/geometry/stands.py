@@ -52,28 +52,18 @@ def narrowest(host: HostView, change: Change) -> float | None:
         return None            # it joins more than the stretch's ends
     along = t.direction[host.prim[p]][i]          # from p towards q, along the side
     order = {v: k for k, v in enumerate(sorted(new))}
-    nv, ne = len(order), len(change.glue)
+    nv = len(order)
+
+    def place(v: int, c: int) -> list[tuple[int, float]]:
+        # p at the origin, q at s·along: the stretch's length s is column 2·nv.
+        if v in order:
+            return [(2 * order[v] + c, 1.0)]
+        return [(2 * nv, along[c])] if ends[v] == 1 else []
+
     # Columns: each new vertex's x and y, the stretch's length s, then each edge's length.
-    cols = 2 * nv + 1 + ne
-    A = np.zeros((2 * ne, cols))
-    bounds = [(None, None)] * (2 * nv) + [(0.0, None)]
-    for e, (a, b) in enumerate(change.glue):
-        v, k = a
-        prim = new.get(v, host.prim.get(v))
-        d = t.direction[prim][k]
-        lab = t.label[prim][k]
-        lo, hi, fixed, _ = t.lengths[lab]
-        bounds.append((fixed, fixed) if fixed is not None
-                      else (max(lo, 0.0), hi if hi < math.inf else None))
-        for c in (0, 1):
-            # pos(b) − pos(a) − len·d = 0, with p at the origin and q at s·along.
-            row = 2 * e + c
-            for w, sign in ((b[0], 1.0), (a[0], -1.0)):
-                if w in order:
-                    A[row, 2 * order[w] + c] += sign
-                elif ends[w] == 1:
-                    A[row, 2 * nv] += sign * along[c]
-            A[row, 2 * nv + 1 + e] = -d[c]
+    A, lengths = _glued_rows(host, change, place, 2 * nv + 1)
+    ne, cols = len(change.glue), A.shape[1]
+    bounds = [(None, None)] * (2 * nv) + [(0.0, None)] + lengths
     cost = np.zeros(cols)
     cost[2 * nv] = 1.0
     from scipy.optimize import linprog      # first use only: ggrun starts without scipy
@@ -91,27 +81,17 @@ def least_reach(host: HostView, change: Change) -> list[tuple[float, ...]] | Non
     beyond that old vertex that way, over every drawing of the part (the other old vertices
     free, lengths within their classes, tiles and floors relaxed: a lower bound; −inf where
     there is none). None for a change with no new vertex or no old one."""
-    t, new = host.t, dict(change.new)
+    new = dict(change.new)
     olds = joined(change)
     if not new or not olds:
         return None
     col = {v: 2 * k for k, v in enumerate(sorted(new))}
     col.update({v: 2 * (len(new) + k) for k, v in enumerate(olds)})
     npos, ne = 2 * (len(new) + len(olds)), len(change.glue)
-    cols = npos + ne + 1                         # positions, edge lengths, the reach
-    A = np.zeros((2 * ne, cols))
-    bounds: list = [(None, None)] * npos
-    for e, (a, b) in enumerate(change.glue):
-        v, k = a
-        prim = new.get(v, host.prim.get(v))
-        d, (lo, hi, fixed, _) = t.direction[prim][k], t.lengths[t.label[prim][k]]
-        bounds.append((fixed, fixed) if fixed is not None
-                      else (max(lo, 0.0), hi if hi < math.inf else None))
-        for c in (0, 1):
-            A[2 * e + c, col[b[0]] + c] += 1.0
-            A[2 * e + c, col[v] + c] -= 1.0
-            A[2 * e + c, npos + e] = -d[c]
-    bounds.append((None, None))
+    # Columns: every vertex's x and y, each edge's length, then the reach.
+    A, lengths = _glued_rows(host, change, lambda v, c: [(col[v] + c, 1.0)], npos, extra=1)
+    cols = A.shape[1]
+    bounds = [(None, None)] * npos + lengths + [(None, None)]
     cost = np.zeros(cols)
     cost[-1] = 1.0
     from scipy.optimize import linprog      # first use only: ggrun starts without scipy
@@ -142,3 +122,27 @@ def joined(change: Change) -> list[int]:
             if v not in new and v not in out:
                 out.append(v)
     return out
+
+
+def _glued_rows(host: HostView, change: Change, place, first: int,
+                extra: int = 0) -> tuple[np.ndarray, list]:
+    """Two rows per edge the change glues, pos(b) − pos(a) − length·d = 0, over columns
+    `place(v, c)` lists for vertex v's coordinate c as (column, coefficient) pairs (none: at
+    the origin), edge e's length being column `first + e`, and `extra` columns after those;
+    and each length's bounds (its class's, or its fixed length)."""
+    t, new = host.t, dict(change.new)
+    ne = len(change.glue)
+    A = np.zeros((2 * ne, first + ne + extra))
+    bounds = []
+    for e, (a, b) in enumerate(change.glue):
+        v, k = a
+        prim = new.get(v, host.prim.get(v))
+        d, (lo, hi, fixed, _) = t.direction[prim][k], t.lengths[t.label[prim][k]]
+        bounds.append((fixed, fixed) if fixed is not None
+                      else (max(lo, 0.0), hi if hi < math.inf else None))
+        for c in (0, 1):
+            for w, sign in ((b[0], 1.0), (v, -1.0)):
+                for column, coef in place(w, c):
+                    A[2 * e + c, column] += sign * coef
+            A[2 * e + c, first + e] = -d[c]
+    return A, bounds
