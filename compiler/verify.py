@@ -72,10 +72,13 @@ class _SizeBound:
             count[t] = count.get(t, 0) + 1
         return count
 
+    def begun(self, present: set[int]) -> set[frozenset[int]]:
+        """The groups that `present` holds some primitive of."""
+        return {self.group[p] for p in present if p in self.group}
+
     def missing(self, present: set[int]) -> int:
         """The primitives the groups begun in `present` still lack."""
-        begun = {self.group[p] for p in present if p in self.group}
-        return sum(len(g - present) for g in begun)
+        return sum(len(g - present) for g in self.begun(present))
 
     def too_big(self, n: int, count: dict[int, int]) -> bool:
         """Whether `n` vertices with these open half-edges need more than `max_prims`: some
@@ -103,8 +106,8 @@ class _SizeBound:
         leave every token's excess over its opposite as it was: they are left in the count.)"""
         base, n = self.open_counts(g), len(g.verts)
         present = set(g.verts)
+        begun = self.begun(present)
         lacking = self.missing(present)
-        begun = {self.group[p] for p in present if p in self.group}
 
         def admit(s: Slot, b: int, t: Slot) -> bool:
             more = lacking

@@ -489,12 +489,9 @@ class Engine:
         the structure can be drawn (stands.py): the solver would have to move the structures
         at the stretch's ends apart, which on the paper's castle it never did (0 of 1,804
         proposals on such stretches, seeds 80 and 0-3)."""
-        if self.host.frame is None or change.removed or len(change.cut) != 1:
+        if self.host.frame is None:
             return False
-        key = id(change.rule)
-        if key not in self._narrowest:
-            self._narrowest[key] = narrowest(self.host, change)
-        least = self._narrowest[key]
+        least = self._per_move(self._narrowest, narrowest, change)
         if least is None:
             return False
         (v, i), = change.cut
@@ -507,12 +504,9 @@ class Engine:
         space station's top module, whose top lies 35 px under the frame's. Asked only of
         moves that have failed outside the frame before, in a rectangular frame."""
         frame, host = self.host.frame, self.host
-        key = id(change.rule)
-        if frame is None or not frame.rectangle or key not in self._outside:
+        if frame is None or not frame.rectangle or id(change.rule) not in self._outside:
             return False
-        if key not in self._reach:
-            self._reach[key] = least_reach(host, change)
-        reach = self._reach[key]
+        reach = self._per_move(self._reach, least_reach, change)
         if reach is None:
             return False
         x0, y0, x1, y1 = frame.box
@@ -524,27 +518,29 @@ class Engine:
                 return True
         return False
 
+    def _per_move(self, table: dict, compute, change: Change):
+        """`compute(host, change)`, once per move: what it reads of the change (its new part,
+        what it glues and cuts) is the same at every match of the move."""
+        key = id(change.rule)
+        if key not in table:
+            table[key] = compute(self.host, change)
+        return table[key]
+
     def _footprint(self, change: Change) -> float:
         """How much of a frame's side a structure stood on it covers at typical lengths: its
         new edges of a border class (along the side), but for the two that join it to the
         stretch's ends."""
-        key = id(change.rule)
-        if key not in self._feet:
-            t, new = self.host.t, dict(change.new)
-            self._feet[key] = sum(
-                t.typical[lab] for a, b in change.glue
-                if a[0] in new and b[0] in new
-                for lab in (t.label[new[a[0]]][a[1]],)
-                if lab in self.host.border_labels and t.typical[lab] == t.typical[lab])
-        return self._feet[key]
+        def footprint(host, change: Change) -> float:
+            t, new = host.t, dict(change.new)
+            return sum(t.typical[lab] for a, b in change.glue if a[0] in new and b[0] in new
+                       for lab in (t.label[new[a[0]]][a[1]],)
+                       if lab in host.border_labels and t.typical[lab] == t.typical[lab])
+        return self._per_move(self._feet, footprint, change)
 
     def _landing_label(self, change: Change) -> str | None:
-        key = id(change.rule)
-        if key not in self._outer:
-            prim = dict(change.new)
-            self._outer[key] = outer_label(self.tables, prim,
-                                           lambda v, i: change.partner_after(self.host, v, i))
-        return self._outer[key]
+        return self._per_move(self._outer, lambda host, change: outer_label(
+            self.tables, dict(change.new), lambda v, i: change.partner_after(host, v, i)),
+            change)
 
     def _faces_ok(self, placed: dict[int, Point], pts: list[Point]) -> bool:
         host = self.host
