@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from operator import itemgetter
 from typing import Callable, Protocol
 
 from grammar_lang.diagnostics import error
@@ -149,21 +150,36 @@ class SceneCost:
     absent: float = 0.0         # what an expected edge of a missing group costs (0: as any)
     name: str = "scene"
 
+    def __post_init__(self):
+        # Asked for every move a step screens (ten times a step on the paper's village): a
+        # group's count taken by one C call, not a generator over its labels. Each picker
+        # returns a tuple, a group of one label too.
+        object.__setattr__(self, "_pickers",
+                           tuple((_picker(ks), f) for ks, f in zip(self.groups, self.shares)))
+
     def value(self, s: Stats) -> float:
         return self.size.value(s) + self.proportions(s)
 
     def proportions(self, s: Stats) -> float:
         off = 0.0
-        for ks, f in zip(self.groups, self.shares):
+        counts, edges = s.label_count, s.edges
+        for pick, f in self._pickers:
             # Counts are predicted before a move is matched: a move that cannot match (one
             # that deletes more than the drawing has) may predict fewer than no edges.
-            expected = max(0.0, f * s.edges)
-            n = sum(s.label_count[k] for k in ks)
+            expected = max(0.0, f * edges)
+            n = sum(pick(counts))
             if n == 0 and self.absent:
                 off += self.absent * expected
             else:
                 off += max(0.0, abs(n - expected) - math.sqrt(expected))
         return off
+
+
+def _picker(ks: tuple[int, ...]) -> Callable[[tuple[int, ...]], tuple[int, ...]]:
+    """What takes the counts of labels `ks` out of a drawing's counts, as a tuple."""
+    if len(ks) == 1:
+        return itemgetter(slice(ks[0], ks[0] + 1))
+    return itemgetter(*ks) if ks else (lambda counts: ())
 
 
 def default_cost(header, steps: int) -> Cost:

@@ -16,6 +16,7 @@ import math
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from operator import add
 from typing import Callable
 
 import numpy as np
@@ -260,7 +261,7 @@ class Engine:
         b = h.grid.bounds()
         area = 0.0 if b is None else (b[2] - b[0]) * (b[3] - b[1]) / h.t.unit ** 2
         return Stats(len(h) + dv, h.n_edges + ne,
-                     tuple(c + d for c, d in zip(h.label_count, counts)), area)
+                     tuple(map(add, h.label_count, counts)), area)
 
     def apply(self, move: DirectedRule, match: Match, priority: int | None = None,
               use_cost: bool = True, screened: Stats | None = None) -> Outcome:
