@@ -5,7 +5,9 @@ REPL script, or a set of option values; seeds are the shipped examples, the corp
 issue's reproducing inputs) and runs one command on it in this process: `ggc check`, `ggc
 compile`, `ggc primitives`, `ggrun FILE` with random options, `ggrun check`, `ggrun --repl`.
 A case is an internal error (exit 70, or a traceback), a user error (exit 2), ok (exit 0, 1 or
-130) or a hang (over --timeout seconds). The goal is no internal error and no hang.
+130) or a hang (over --timeout seconds); and, whatever its exit, a memory hog when the process's
+peak memory first passes --memory MB during it. The goal is no internal error, no hang and no
+hog.
 
     .venv/bin/python benchmarks/fuzz.py --n 1000 [--seed 0] [--timeout 30] [--show 5] [--keep DIR]
 
@@ -256,11 +258,12 @@ def run_case(case, timeout: float) -> tuple[str, str]:
 
 
 def _keep(folder: Path, number: int, case) -> None:
-    """Copy the files a failed case read (its arguments that name files in the work folder),
-    and its REPL script, to `folder`."""
+    """Copy the files a failed case read (its arguments, and the words of its REPL script, that
+    name files in the work folder), and its REPL script, to `folder`."""
     folder.mkdir(parents=True, exist_ok=True)
     _, _, argv, stdin = case
-    for a in argv:
+    # A REPL script names the files it opens on its own lines.
+    for a in [*argv, *(stdin or "").split()]:
         f = Path(a)
         if f.is_file() and f.parent == Path.cwd():
             shutil.copy(f, folder / f"{number}-{f.name}")
@@ -275,6 +278,8 @@ def main() -> int:
     ap.add_argument("--timeout", type=float, default=30.0, help="seconds before a case hangs")
     ap.add_argument("--show", type=int, default=5, help="failures to print")
     ap.add_argument("--keep", type=Path, help="copy the inputs of failures to this folder")
+    ap.add_argument("--memory", type=int, default=1024,
+                    help="peak memory (MB) past which a case is a memory hog")
     args = ap.parse_args()
     keep = args.keep.resolve() if args.keep is not None else None     # before the chdir
     work = Path(tempfile.mkdtemp(prefix="gg-fuzz-bench-"))
@@ -286,11 +291,20 @@ def main() -> int:
     cases = (*sigs, *(None for _ in range(args.n)))
     counts: dict[str, Counter] = {}
     failures, slowest, t0 = [], (0.0, ""), time.perf_counter()
+    hogged = False
     for case in cases:
         case = case or fuzzer.case()
         start = time.perf_counter()
         outcome, detail = run_case(case, args.timeout)
         took = time.perf_counter() - start
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024
+        if peak > args.memory and not hogged:
+            # The peak only rises: the case that first passes the bound is the one to see.
+            hogged = True
+            failures.append((case, f"peak memory {peak} MB (bound {args.memory} MB); "
+                                   f"it ended as {outcome}"))
+            if keep is not None:
+                _keep(keep, len(failures), case)
         if took > slowest[0]:
             slowest = (took, f"{case[0]}: {' '.join(a[:40] for a in case[2])}")
         counts.setdefault(case[0], Counter())[outcome] += 1
