@@ -50,7 +50,7 @@ def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need, f
     every edge from the part to the rest of the drawing is a seam, parallel to the failed
     edge and of free length, so a translation along it keeps every direction; the part holds
     neither end it must leave, no pinned vertex, no more than LIMIT vertices, and each
-    member's offset is where it lies."""
+    member's offset is where it lies; a part is too large only where the limit stopped it."""
     host = castle
     slots = sorted((v, i) for v in host.link for i, s in enumerate(host.link[v]) if s is not None)
     v, i = slots[pick % len(slots)]
@@ -58,8 +58,17 @@ def test_a_part_moves_along_its_edge_bending_nothing(castle, pick, sign, need, f
     t = host.t
     d = t.direction[host.prim[v]][i]
     held, other = (w, v) if sign == 1 else (v, w)
-    part = sliding_part(host, _adjacency(host), host.prim.__getitem__, _bounds(host), held,
-                        {other}, d, sign, need, frozenset(), far=far)
+    def search(limit=LIMIT):
+        return sliding_part(host, _adjacency(host), host.prim.__getitem__, _bounds(host), held,
+                            {other}, d, sign, need, frozenset(), limit=limit, far=far)
+    part = search()
+    if part is NoPart.LARGE:
+        # Too large only where the limit stopped the search: without it, something else does,
+        # or the part is found, larger than the limit.
+        unbounded = search(limit=10 ** 9)
+        assert unbounded is not NoPart.LARGE
+        assert not isinstance(unbounded, Slide) or len(unbounded.offsets) + 1 > LIMIT
+        return
     if not isinstance(part, Slide):
         assert part in (NoPart.HELD, NoPart.OTHER)
         return

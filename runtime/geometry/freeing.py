@@ -61,9 +61,10 @@ class Freeing:
                                  hung | {other}, d, sign, need, fs, far=far)
                     for held, other, sign in tries]
         found = search(False)
-        if NoPart.HELD in found and not any(isinstance(s, Slide) for s in found):
-            # A search met a vertex that cannot move: both ends again, with seams further
-            # beyond as well (slides.FAR).
+        if (NoPart.HELD in found or NoPart.LARGE in found) \
+                and not any(isinstance(s, Slide) for s in found):
+            # A search met a vertex that cannot move, or a part too large to move: both ends
+            # again, with seams further beyond as well (slides.FAR).
             found = search(True)
         parts = [s for s in found if isinstance(s, Slide)]
         best = min(parts, key=lambda s: len(s.offsets)) if parts else None
