@@ -31,8 +31,21 @@ MAX_DIAGNOSTICS = 20
 # Noding tests "exactly on a line" to 1e-9 of the drawing's span; past this ratio that test is
 # coarser than a hundredth of the drawing's smallest feature, and a drawing that size (a point
 # at 1e11 beside a village of 1,600 px) split and re-merged its pieces round after round
-# until it ran out of memory.
+# until it ran out of memory. A drawing opened in the REPL is held to the same bound: the
+# engine files each edge in every grid cell its box touches, and a point at 1e12 beside a
+# house filed one edge in 10^10 cells (24 GB before the kernel stopped it).
 MAX_SPAN = 1e7
+
+
+def span_and_least(points: np.ndarray, segments: np.ndarray, d: float = 0.0):
+    """How far the points spread (the larger side of their box) and the shortest segment (or
+    `d`, if longer); None when no segment has a length. A drawing is too wide to handle when
+    span > MAX_SPAN · least."""
+    lengths = np.hypot(*(points[segments[:, 1]] - points[segments[:, 0]]).T)
+    lengths = lengths[lengths > 0]
+    if not len(lengths):
+        return None
+    return float((points.max(axis=0) - points.min(axis=0)).max()), max(d, float(lengths.min()))
 
 
 @dataclass(frozen=True)
@@ -166,14 +179,10 @@ class _Builder:
     def check_span(self, points: np.ndarray, segments: np.ndarray, d: float) -> None:
         """Refuse a drawing that spans more than MAX_SPAN times its shortest edge (or merge
         distance); the error points at the item holding the point furthest from the middle."""
-        span = float((points.max(axis=0) - points.min(axis=0)).max())
-        lengths = np.hypot(*(points[segments[:, 1]] - points[segments[:, 0]]).T)
-        lengths = lengths[lengths > 0]
-        if not len(lengths):
+        found = span_and_least(points, segments, d)
+        if found is None or found[0] <= MAX_SPAN * found[1]:
             return
-        least = max(d, float(lengths.min()))
-        if span <= MAX_SPAN * least:
-            return
+        span, least = found
         far = int(np.abs(points - np.median(points, axis=0)).max(axis=1).argmax())
         self.report(f"the drawing spans {span:g}, more than {MAX_SPAN:g} times its shortest "
                     f"edge ({least:g}): at that scale its points cannot be placed finely "

@@ -245,6 +245,20 @@ def test_open_refuses_a_drawing_of_another_grammar(tmp_path):
     assert "does not have" in tbuf.getvalue() and len(t.engine.host) == 0
 
 
+def test_open_refuses_a_drawing_spread_too_wide_to_file(tmp_path):
+    """One vertex moved to 10^12 (found by benchmarks/fuzz.py): the engine would file its
+    edges in 10^10 grid cells. It is refused at once, and the session keeps its drawing."""
+    s, buf = session(filled_square())
+    assert execute(s, "seed 4") and execute(s, "run 6")
+    assert execute(s, f"save {tmp_path / 'a.json'}")
+    d = json.loads((tmp_path / "a.json").read_text())
+    d["vertices"][0]["y"] = 1e12
+    (tmp_path / "far.json").write_text(json.dumps(d))
+    before = len(s.engine.host)
+    assert not execute(s, f"open {tmp_path / 'far.json'}")
+    assert "spans 1e+12" in buf.getvalue() and len(s.engine.host) == before
+
+
 def test_watch_rerenders_after_every_change(tmp_path):
     s, buf = session(filled_square())
     svg = tmp_path / "w.svg"

@@ -557,7 +557,25 @@ def _from_drawing(session: Session, d, path: str):
         for t, e in have:
             ends.setdefault(e, []).append((k, rings[prim].index(t)))
     glued = [tuple(ends[e]) for e in sorted(ends)]
+    _check_span(d, index, path)
     return verts, glued
+
+
+def _check_span(d, index: dict, path: str) -> None:
+    """Refuse a drawing far wider than its shortest edge (planar.MAX_SPAN), which the engine
+    could not file in its grid."""
+    if not d.edges:
+        return
+    import numpy as np      # the loader's own bound: imported here, when a drawing is opened
+    from grammar_lang.planar import MAX_SPAN, span_and_least
+    points = np.array([(v.x, v.y) for v in d.vertices], dtype=float)
+    segments = np.array([(index[e.u], index[e.v]) for e in d.edges], dtype=int)
+    found = span_and_least(points, segments)
+    if found is not None and found[0] > MAX_SPAN * found[1]:
+        raise error(f"{path}: the drawing spans {found[0]:g}, more than {MAX_SPAN:g} times its "
+                    f"shortest edge ({found[1]:g})", None,
+                    "was a vertex moved far away by hand? 'ggrun check' lists the drawing's "
+                    "problems")
 
 
 # --- the rest ---------------------------------------------------------------------------------
