@@ -183,10 +183,7 @@ def find_frame(ex) -> Frame | None:
     frame = Frame(corners)
     bent = crooked_side(frame, ex.primitives, ex.labels)
     if bent is not None:
-        a, b = corners[bent], corners[(bent + 1) % len(corners)]
-        raise _frame_error(ex, around[at[bent]][0],
-                           f"the frame's side from {_at((a.x, a.y))} to {_at((b.x, b.y))} does "
-                           "not run along the direction its edges are labelled with",
+        raise _frame_error(ex, around[at[bent]][0], crooked_text(frame, bent),
                            "draw the frame's sides straight, and keep other points off them: "
                            "a point within the merge distance of a side is routed through it")
     return frame
@@ -202,6 +199,13 @@ def crooked_side(frame: Frame, primitives, labels) -> int | None:
         if slot_towards(primitives[a.prim].ring, labels, b.x - a.x, b.y - a.y) is None:
             return k
     return None
+
+
+def crooked_text(frame: Frame, k: int) -> str:
+    """What is wrong with side k that `crooked_side` found, for an error message."""
+    a, b = frame.corners[k], frame.corners[(k + 1) % len(frame.corners)]
+    return (f"the frame's side from {_at((a.x, a.y))} to {_at((b.x, b.y))} does not run along "
+            "the direction its edges are labelled with")
 
 
 def _has_loop(around: dict[int, list[int]], edges) -> bool:

@@ -12,7 +12,7 @@ from __future__ import annotations
 from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import read_text
 from grammar_lang.frame import (Frame, bare_sides, border_labels, border_primitives,
-                                 crooked_side, slot_towards)
+                                 crooked_side, crooked_text, slot_towards)
 
 from .change import HostView
 
@@ -34,9 +34,7 @@ def place_frame(host: HostView, frame: Frame, rng=None) -> None:
                           "compiled today starts such a frame from the example's own)")
     bent = crooked_side(frame, h.primitives, h.labels)
     if bent is not None:
-        a, b = frame.corners[bent], frame.corners[(bent + 1) % len(frame.corners)]
-        raise error(f"the frame's side from ({a.x:g}, {a.y:g}) to ({b.x:g}, {b.y:g}) does not "
-                    "run along any direction of its corner's edges", None,
+        raise error(crooked_text(frame, bent), None,
                     "draw the frame's sides along their edges' directions, or compile the "
                     "example again")
     ids = []

@@ -94,17 +94,21 @@ def least_reach(host: HostView, change: Change) -> list[tuple[float, ...]] | Non
     bounds = [(None, None)] * npos + lengths + [(None, None)]
     cost = np.zeros(cols)
     cost[-1] = 1.0
+    # reach ≥ ⟨p_v, d⟩ for every new vertex v, with the old vertex asked about at the origin:
+    # one set of rows per direction, the same for every old vertex.
+    rows = []
+    for dx, dy in SIDES:
+        ub = np.zeros((len(new), cols))
+        for r, v in enumerate(sorted(new)):
+            ub[r, col[v]], ub[r, col[v] + 1], ub[r, -1] = dx, dy, -1.0
+        rows.append(ub)
     from scipy.optimize import linprog      # first use only: ggrun starts without scipy
     out = []
     for c in olds:
         pinned = list(bounds)
         pinned[col[c]] = pinned[col[c] + 1] = (0.0, 0.0)
         row = []
-        for dx, dy in SIDES:
-            # reach ≥ ⟨p_v, d⟩ for every new vertex v, with the old vertex c at the origin.
-            ub = np.zeros((len(new), cols))
-            for r, v in enumerate(sorted(new)):
-                ub[r, col[v]], ub[r, col[v] + 1], ub[r, -1] = dx, dy, -1.0
+        for ub in rows:
             res = linprog(cost, A_ub=ub, b_ub=np.zeros(len(new)), A_eq=A,
                           b_eq=np.zeros(2 * ne), bounds=pinned, method="highs")
             row.append(float(res.x[-1]) if res.status == 0 else -math.inf)
