@@ -34,9 +34,14 @@ def field_values(f: Field):
     return st.floats(lo, hi, exclude_min=f.lo_open, exclude_max=f.hi_open, allow_nan=False)
 
 
-# Plain identifiers collide often (good for uniqueness handling); free text exercises quoting.
+# Plain identifiers collide often (good for uniqueness handling); free text exercises quoting;
+# the language's own words are names too.
+WORDS = ("boundary", "class", "exterior", "face", "faces", "frame", "label", "let", "lhs",
+         "limits", "primitive", "production", "rhs", "rule", "set", "starter", "unit",
+         "where", "wire", "edges", "vertices", "attribute", "start", "mode", "status",
+         "source", "hash", "compiler", "checksum", "options", "decorate", "ggr")
 plain = st.from_regex(r"[a-zA-Z_][a-zA-Z0-9_₀₁]{0,4}", fullmatch=True)
-names = st.one_of(plain, plain, st.text(min_size=1, max_size=6))
+names = st.one_of(plain, plain, st.text(min_size=1, max_size=6), st.sampled_from(WORDS))
 positive = st.floats(min_value=1e-6, max_value=1e6, allow_nan=False, allow_infinity=False)
 nonneg = st.floats(min_value=0, max_value=1e6, allow_nan=False, allow_infinity=False)
 angles = st.one_of(st.sampled_from([0.0, 45.0, 90.0, 135.0, 22.5]),

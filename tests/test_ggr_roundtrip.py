@@ -11,7 +11,7 @@ import pytest
 from conftest import CORPUS
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from ggr_strategies import grammars, renumbered, sides
+from ggr_strategies import WORDS, grammars, renumbered, sides
 from grammar_lang.diagnostics import UserError
 from grammar_lang.ggr_emit import emit_ggr
 from grammar_lang.ggr_file import edit_state, write_ggr
@@ -81,6 +81,46 @@ def test_shipped_example_headers_round_trip(path):
                     decorations=ex.decorations)
     grammar = Grammar(header, ())
     assert parse_ggr(emit_ggr(grammar)) == grammar
+
+
+def _named_with_keywords(header):
+    """`header` with its labels, primitives, face labels and classes renamed to the words of
+    the language (WORDS), as far as they go round."""
+    import dataclasses
+    words = WORDS
+    voc = header.vocabulary
+    faces = {f: words[k % len(words)] + "_" * (k // len(words))
+             for k, f in enumerate((voc.exterior, *voc.face_labels))}
+    classes = {c.name: words[-1 - k % len(words)] + "_" * (k // len(words))
+               for k, c in enumerate(voc.classes)}
+    labels = tuple(dataclasses.replace(l, name=words[(k + 3) % len(words)] + "_" * (k // len(words)),
+                                       left=faces.get(l.left, l.left),
+                                       right=faces.get(l.right, l.right),
+                                       cls=classes.get(l.cls, l.cls))
+                   for k, l in enumerate(voc.labels))
+    prims = tuple(dataclasses.replace(p, name=words[(k + 7) % len(words)] + "_" * (k // len(words)))
+                  for k, p in enumerate(voc.primitives))
+    voc = dataclasses.replace(
+        voc, exterior=faces[voc.exterior], face_labels=tuple(faces[f] for f in voc.face_labels),
+        classes=tuple(dataclasses.replace(c, name=classes[c.name]) for c in voc.classes),
+        labels=labels, primitives=prims)
+    return dataclasses.replace(header, vocabulary=voc, decorations=())
+
+
+@pytest.mark.parametrize("name", ["house", "castle-scene", "space-station"])
+def test_names_spelled_like_the_languages_words_round_trip(name):
+    """Names are written bare where they are plain identifiers, the language's own words too:
+    a label named `face` second in a primitive's ring used to be read as a production's
+    `face` keyword (LALR merged the states that end a name in both places)."""
+    from grammar_lang.loader import load_example
+    from grammar_lang.rules import Header
+    ex = load_example(ROOT / "examples" / f"{name}.gg")
+    header = _named_with_keywords(Header(source=name, vocabulary=ex.vocabulary,
+                                         options=ex.options))
+    grammar = Grammar(header, ())
+    text = emit_ggr(grammar)
+    assert re.search(r"^primitive \S+ = .*~?face\b", text, re.M)
+    assert parse_ggr(text) == grammar
 
 
 def doc_blocks():
