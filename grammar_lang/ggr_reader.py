@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from dataclasses import dataclass
 
 from lark import Token, Tree
@@ -138,9 +139,14 @@ class Reader:
 
     def integer(self, tok: Token) -> int:
         try:
-            return int(str(tok))
+            value = int(str(tok))
         except ValueError:      # more digits than Python converts
             raise self.fail(f"the number {str(tok)[:20]}… is too long", tok) from None
+        # Whole numbers meet floats (a decoration's size, a weight): one beyond the largest
+        # float is out of range, as a decimal one is (`number`).
+        if abs(value) > sys.float_info.max:
+            raise self.fail(f"{str(tok)[:20]}… is out of range", tok)
+        return value
 
     def number(self, tok: Token) -> float:
         value = float(str(tok))

@@ -74,6 +74,10 @@ CASES = [
      "unknown setting 'wieght'", "wieght", "did you mean 'weight'"),
     ("whole-number", "rule wall priority=1", "rule wall priority=1.5",
      "'priority' is a whole number", "1.5", None),
+    # A whole number beyond the largest float once reached float() in the decoration's
+    # check and failed as an internal error (found by benchmarks/fuzz.py).
+    ("whole-number-out-of-range", "mode dpo", 'mode dpo\ndecorate vertex * size=' + "9" * 400,
+     "is out of range", "9" * 400, None),
     ("unknown-mode", "mode dpo", "mode dop", "unknown mode 'dop'", "dop", "spo"),
     ("twice-single", "mode dpo", "mode dpo\nmode spo", "'mode' is given twice", "spo",
      "first one is on line"),
