@@ -232,7 +232,7 @@ class Inference:
         self._recheck()
         self._regroup()
         self._tick()
-        while self.frontier and self.pending is None and not self._out_of_time():
+        while self._expandable() and self.pending is None and not self._out_of_time():
             if self.generation >= self.limits.generations:
                 self.state.limits_hit.add("generations")
                 break
@@ -258,6 +258,12 @@ class Inference:
             self._tick()
             if self._too_many():
                 break
+
+    def _expandable(self) -> bool:
+        """Whether the frontier still holds a graph to expand: its graphs may have become
+        rules or reducible since they were met, and a generation of none of them is empty."""
+        nodes = self.hier.nodes
+        return any(nodes[nid].status == KEPT for nid in self.frontier)
 
     def _tick(self) -> None:
         if self.progress:

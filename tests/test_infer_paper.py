@@ -2,7 +2,7 @@
 
 import pytest
 
-from conftest import CORPUS, ROOT
+from conftest import CORPUS, ILLUSTRATIONS, ROOT
 from hand_examples import CORNERS_AND_T, RECTANGLE, make
 from compiler.infer import Inference, compile_example
 from compiler.verify import verify
@@ -158,3 +158,16 @@ def test_connected_option_allows_no_spliced_right_sides():
     assert res.grammar.header.options.connected
     for r in res.grammar.rules:
         assert len(r.rhs.components()) + len(r.rhs.wires) <= 1
+
+
+@pytest.mark.parametrize("path", [CORPUS / "house-hollow.json", CORPUS / "triangle-square.json",
+                                  ILLUSTRATIONS / "flowers.gg"], ids=lambda p: p.stem)
+def test_the_generations_reported_are_those_that_met_graphs(path):
+    """A generation is counted only when it expands a graph: a frontier whose graphs all
+    became rules since they were met no longer counts as one more (the flowers reported 4)."""
+    if not path.exists():
+        pytest.skip("corpus not found")
+    inference = Inference(load_example(path))
+    report = inference.run().report
+    assert report.complete
+    assert report.generations == max(node.gen for node in inference.hier.nodes)
