@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import html
 
+from grammar_lang.xml_text import xml_text
+
 
 def esc(text: object) -> str:
     """Every piece of text from a user's file goes through here into HTML or SVG (element
-    content and quoted attribute values alike)."""
-    return html.escape(str(text), quote=True)
+    content and quoted attribute values alike), with what XML cannot hold replaced."""
+    return html.escape(xml_text(str(text)), quote=True)
 
 
 def num(x: float) -> str:

@@ -21,6 +21,7 @@ from grammar_lang.ggr_parser import parse_ggr
 from grammar_lang.rules import Grammar, Header
 from grammar_lang.source import Decoration, EdgeClass
 from grammar_lang.vocabulary import Vocabulary
+from grammar_lang.xml_text import xml_text
 from runtime.output.drawing import DEdge, Drawing, DVertex
 from runtime.output.svg_out import render_svg
 
@@ -34,7 +35,10 @@ HOSTILE = ['"', "'", "<", ">", "&", "&amp;", "&#34;", '" onload="x', "'/><script
            "]]>", "<!--", "\n", "\t", "\r", " ", "=", "/", "\\", "url(", ")", ";", "é", "#fff"]
 # XML 1.0 cannot hold most C0 controls or lone surrogates at all; readers refuse them first.
 xml_char = st.characters(blacklist_categories=("Cs",), min_codepoint=0x20) | st.sampled_from("\t\n")
-hostile = st.lists(st.sampled_from(HOSTILE) | st.text(xml_char, max_size=4),
+# What a writer is handed may hold any of them, and U+FFFE too (a .ggr string spells any code
+# point): it writes U+FFFD for each (grammar_lang.xml_text).
+NOT_XML = ["\x00", "\x01", "\x1f", "\ufffe", "\uffff", "\ud800"]
+hostile = st.lists(st.sampled_from(HOSTILE + NOT_XML) | st.text(xml_char, max_size=4),
                    min_size=1, max_size=5).map("".join)
 FUZZ = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -46,9 +50,9 @@ def check_structure(svg: str, labels: set[str], classes: set[str]) -> None:
         assert tag in TAGS, tag
         assert set(el.attrib) <= ATTRS, set(el.attrib) - ATTRS
         if "data-label" in el.attrib:
-            assert el.attrib["data-label"] in labels
+            assert el.attrib["data-label"] in {xml_text(s) for s in labels}
         if "data-class" in el.attrib:
-            assert el.attrib["data-class"] in classes
+            assert el.attrib["data-class"] in {xml_text(s) for s in classes}
     assert not list(root.iter("script")) and not list(root.iter(f"{SVG}script"))
 
 
@@ -152,3 +156,36 @@ def test_valid_ggr_decorations_load_and_draw():
                                                    ("width", 2.0))
     svg = render_svg(square("exterior", "exterior", "0"), grammar)
     assert 'stroke="#ff0000" stroke-width="2" stroke-opacity="0.5"' in svg
+
+
+@FUZZ
+@given(label=hostile, cls=hostile, name=hostile)
+def test_graphml_holds_any_name(tmp_path_factory, label, cls, name):
+    """GraphML is XML too: any name reads back, with U+FFFD for what XML cannot hold."""
+    import networkx as nx
+    from runtime.output.graphml_out import write_graphml
+    drawing = square(label, "exterior", cls)
+    drawing = Drawing(drawing.vertices, drawing.edges, {"grammar": name})
+    path = tmp_path_factory.mktemp("graphml") / "d.graphml"
+    write_graphml(drawing, path)
+    g = nx.read_graphml(path)
+
+    def read(text: str) -> str:         # and a reader makes every line end a line feed
+        return xml_text(text).replace("\r\n", "\n").replace("\r", "\n")
+
+    assert g.graph["grammar"] == read(name)
+    assert {d["left"] for _, _, d in g.edges(data=True)} == {read(label)}
+    assert {d["class"] for _, _, d in g.edges(data=True)} == {read(cls)}
+
+
+@FUZZ
+@given(text=st.lists(st.sampled_from(NOT_XML) | st.text(max_size=4), max_size=6).map("".join))
+def test_xml_text_is_always_xml(text):
+    """Whatever a name holds, escaped after xml_text it reads back as XML, in an attribute and
+    as content, the report's escaping too."""
+    from xml.sax.saxutils import escape, quoteattr
+    from report.markup import esc
+    safe = xml_text(text)
+    assert len(safe) == len(text)
+    root = ET.fromstring(f"<a b={quoteattr(safe)} c=\"{esc(text)}\">{escape(safe)}{esc(text)}</a>")
+    assert root.get("b") == safe

@@ -16,6 +16,7 @@ from pathlib import Path
 from xml.sax.saxutils import escape
 
 from grammar_lang.fileio import atomic_write
+from grammar_lang.xml_text import xml_text
 
 from .drawing import DEdge, Drawing, DVertex
 from ..engine.free_host import FreeHost
@@ -40,7 +41,7 @@ def render_free_svg(host: FreeHost, header) -> str:
     k = SCREEN / max(vb[2], vb[3])
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{" ".join(fmt(x) for x in vb)}" '
            f'width="{fmt(vb[2] * k)}" height="{fmt(vb[3] * k)}">',
-           f"  <title>{escape(header.source or 'drawing')}: {host.counts['vertex']} "
+           f"  <title>{escape(xml_text(header.source or 'drawing'))}: {host.counts['vertex']} "
            f"vertices, {host.counts['edge']} edges, {host.counts['face']} faces</title>",
            '  <g transform="scale(1,-1)" stroke-linecap="round" stroke-linejoin="round">']
     decos = {kind: decorations(header, kind) for kind in ("face", "edge", "vertex")}

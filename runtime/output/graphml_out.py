@@ -14,6 +14,7 @@ from pathlib import Path
 import networkx as nx
 
 from grammar_lang.fileio import atomic_write
+from grammar_lang.xml_text import xml_text
 
 from .drawing import Drawing, round_coordinate
 
@@ -32,5 +33,12 @@ def drawing_graph(drawing: Drawing) -> nx.DiGraph:
 
 
 def write_graphml(drawing: Drawing, path: str | Path) -> None:
-    """GraphML, written atomically; networkx escapes every string it writes as XML."""
-    atomic_write(path, "\n".join(nx.generate_graphml(drawing_graph(drawing))) + "\n")
+    """GraphML, written atomically; networkx escapes every string it writes as XML, and
+    what XML cannot hold is replaced first (grammar_lang.xml_text)."""
+    g = drawing_graph(drawing)
+    for attrs in (g.graph, *(d for _, d in g.nodes(data=True)),
+                  *(d for _, _, d in g.edges(data=True))):
+        for k, v in attrs.items():
+            if isinstance(v, str):
+                attrs[k] = xml_text(v)
+    atomic_write(path, "\n".join(nx.generate_graphml(g)) + "\n")

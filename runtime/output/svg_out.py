@@ -28,6 +28,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 
 from grammar_lang.fileio import atomic_write
+from grammar_lang.xml_text import xml_text
 
 from .bending import Bend, bend_picture
 from .drawing import Drawing
@@ -46,9 +47,10 @@ SCREEN = 800.0          # px along the larger side, for the width/height attribu
 
 def element(tag: str, attrs, body: str | None = None) -> str:
     """An XML element, every attribute value escaped here and nowhere else: no value, from
-    whatever input file, can end its attribute and start another, or start an element.
+    whatever input file, can end its attribute and start another, or start an element, nor
+    hold a character XML cannot (grammar_lang.xml_text).
     `attrs` is a sequence of (name, value) pairs; a None value leaves the attribute out."""
-    text = "".join(f" {k}={quoteattr(str(v))}" for k, v in attrs if v is not None)
+    text = "".join(f" {k}={quoteattr(xml_text(str(v)))}" for k, v in attrs if v is not None)
     return f"<{tag}{text}/>" if body is None else f"<{tag}{text}>{body}</{tag}>"
 
 
@@ -172,7 +174,7 @@ def render_svg(drawing: Drawing, reference=None, base: str | Path | None = None)
     head = [svg[: -len("</svg>")]]
     ref = cv.ref
     title = (ref.name if ref and ref.name else drawing.meta.get("example", "")) or "drawing"
-    head.append(f"  <title>{escape(str(title))}: {len(cv.ids)} vertices, "
+    head.append(f"  <title>{escape(xml_text(str(title)))}: {len(cv.ids)} vertices, "
                 f"{len(drawing.edges)} edges</title>")
     body = _faces_group(cv) + _edges_group(cv) + _vertices_group(cv)
     if cv.defs:
