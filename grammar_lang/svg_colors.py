@@ -93,3 +93,35 @@ def normalize_color(value: str) -> str | None:
         if None not in channels:
             return "#" + "".join(f"{c:02x}" for c in channels)
     return None
+
+
+def luminance(colour: str) -> float | None:
+    """The relative luminance of a CSS colour (WCAG 2: 0 black … 1 white), None when it is
+    not a colour we understand."""
+    hexed = normalize_color(colour)
+    if hexed is None:
+        return None
+    channels = [int(hexed[i:i + 2], 16) / 255.0 for i in (1, 3, 5)]
+    r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in channels)
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b
+
+
+def contrast(a: str, b: str) -> float | None:
+    """WCAG 2's contrast ratio of two colours (1 the same … 21 black on white), None when
+    either is not a colour we understand."""
+    la, lb = luminance(a), luminance(b)
+    if la is None or lb is None:
+        return None
+    return (max(la, lb) + 0.05) / (min(la, lb) + 0.05)
+
+
+# How far apart (0-255, in every channel) two colours may be and still look the same.
+SAME = 16
+
+
+def same_colour(a: str, b: str) -> bool:
+    """Whether two CSS colours look the same (False when either is not a colour we know)."""
+    ha, hb = normalize_color(a), normalize_color(b)
+    if ha is None or hb is None:
+        return False
+    return all(abs(int(ha[i:i + 2], 16) - int(hb[i:i + 2], 16)) <= SAME for i in (1, 3, 5))

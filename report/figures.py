@@ -57,7 +57,12 @@ class Palette:
         order = [c.name for c in header.classes]
         order += [l.cls for l in header.labels if l.cls not in order]
         edge_decos = decorations(header, "edge")
-        classes = {c: edge_paint(c, order, edge_decos)["stroke"] for c in order}
+        beside: dict[str, set[str]] = {c: set() for c in order}
+        for l in header.labels:
+            beside[l.cls].update((l.left, l.right))
+        classes = {c: edge_paint(c, order, edge_decos,
+                                 (faces.get(f) for f in sorted(beside[c])))["stroke"]
+                   for c in order}
         return Palette(faces, classes, tuple(l.name for l in header.labels),
                        tuple(p.name for p in header.primitives))
 

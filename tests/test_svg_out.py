@@ -7,13 +7,16 @@ from dataclasses import replace
 import defusedxml.ElementTree as ET
 import numpy as np
 import pytest
+from hypothesis import given, strategies as st
 from scipy.spatial import cKDTree
 
 from conftest import corpus_names
 from grammar_lang.loader import load_example, load_source
 from grammar_lang.planar import build_planar_graph
 from runtime.output.drawing import Drawing, DVertex, drawing_from_example
-from runtime.output.svg_out import FILL_PALETTE, render_svg, write_svg
+from grammar_lang.svg_colors import contrast, same_colour
+from runtime.output.svg_out import (FILL_PALETTE, LEGIBLE, STROKE_PALETTE, legible_stroke,
+                                   render_svg, write_svg)
 from test_verifier import example, inner_faces, nested_copy, own_drawing, transformed, union
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -260,3 +263,54 @@ def test_an_imported_drawing_keeps_its_colours_unless_decorated(tmp_path, user, 
     assert strokes["stem"] == stem and fills["sky"] == sky
     # A class named by its colour is drawn in it, unless a `*` decoration says otherwise.
     assert strokes["#ff3232"] == ("#0000ff" if "*" in user else "#ff3232")
+
+
+HIDDEN = """\
+face space #000001
+face module #bdc7cf
+class truss { min: 20 }
+class rim { min: 20 }
+polygon space rect (0, 0) (400, 200)
+polygon module rect (100, 50) (200, 150)
+polyline (200, 100) (350, 100) class truss
+decorate edge truss { stroke: #000000 }
+decorate edge rim { stroke: #000000 }
+"""
+
+
+def test_a_stroke_the_colour_of_every_face_beside_it_is_drawn_legibly(tmp_path):
+    # A station's trusses, drawn black in its black space, could not be seen at all: such a
+    # class is drawn in a palette stroke that stands out instead. A stroke that shows against
+    # one face it borders (the module's rim, black on grey) is the user's to keep.
+    src = tmp_path / "station.gg"
+    src.write_text(HIDDEN.replace("(200, 150)\n", "(200, 150) class rim\n"))
+    ex = load_example(src)
+    root = parse(render_svg(drawing_from_example(ex), ex))
+    strokes = {p.get("data-class"): p.get("stroke") for p in root.iter(f"{SVG}path")
+               if p.get("data-class")}
+    assert strokes["rim"] == "#000000"
+    assert strokes["truss"] in STROKE_PALETTE
+    assert contrast(strokes["truss"], "#000001") >= LEGIBLE
+
+
+@given(st.lists(st.integers(0, 0xFFFFFF).map(lambda c: f"#{c:06x}"), min_size=1, max_size=4),
+       st.integers(0, 20))
+def test_a_palette_stroke_stands_out_where_one_can(fills, k):
+    stroke = legible_stroke(k, set(fills))
+    assert stroke in STROKE_PALETTE
+    def worst(s):
+        return min(contrast(s, f) for f in fills)
+    if any(worst(s) >= LEGIBLE for s in STROKE_PALETTE):
+        assert worst(stroke) >= LEGIBLE
+    else:
+        assert worst(stroke) == max(worst(s) for s in STROKE_PALETTE)
+    if worst(STROKE_PALETTE[k % len(STROKE_PALETTE)]) >= LEGIBLE:
+        assert stroke == STROKE_PALETTE[k % len(STROKE_PALETTE)]
+
+
+def test_contrast_and_same_colour():
+    assert contrast("black", "#ffffff") == pytest.approx(21.0)
+    assert contrast("#123456", "#123456") == pytest.approx(1.0)
+    assert contrast("url(#p)", "#ffffff") is None
+    assert same_colour("#000000", "#000001") and same_colour("black", "#0a0a0a")
+    assert not same_colour("#ffff00", "#ffffff") and not same_colour("red", "url(#p)")

@@ -23,11 +23,13 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Iterable
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
 from grammar_lang.fileio import atomic_write
+from grammar_lang.svg_colors import contrast, same_colour
 from grammar_lang.xml_text import xml_text
 
 from .bending import Bend, bend_picture
@@ -41,6 +43,10 @@ STROKE_PALETTE = ("#1a1a1a", "#1f78b4", "#e31a1c", "#33a02c", "#6a3d9a", "#ff7f0
 # Sizes relative to the example's unit length (its median edge), when not decorated.
 STROKE_WIDTH = 0.02
 MARGIN = 0.05           # of the drawing's larger side
+# A stroke that stands out from a fill beside it (WCAG 2's ratio for graphics), and the fill
+# behind an unpainted face.
+LEGIBLE = 3.0
+PAGE = "#ffffff"
 BEND_STEP = 0.25        # bend-step when not decorated, in units
 SCREEN = 800.0          # px along the larger side, for the width/height attributes
 
@@ -105,14 +111,36 @@ def face_paint(label: str, plain: list[str], exterior: str,
     return FILL_PALETTE[plain.index(label) % len(FILL_PALETTE)], style
 
 
-def edge_paint(cls: str, class_order: list[str], edge_decos: list[tuple[str, dict]]) -> dict:
-    """An edge class's decoration style, with its stroke colour filled in."""
+def edge_paint(cls: str, class_order: list[str], edge_decos: list[tuple[str, dict]],
+               beside: Iterable[str | None] = ()) -> dict:
+    """An edge class's decoration style, with its stroke colour filled in. `beside`: the
+    fills of the faces its edges border (None: unpainted, the page's white)."""
     style = _style_for(edge_decos, cls)
-    if "stroke" not in style:
-        # A class named by its colour (an SVG line's stroke, as the importer names them).
-        style["stroke"] = cls.lower() if _hex_colour(cls) else \
-            STROKE_PALETTE[class_order.index(cls) % len(STROKE_PALETTE)]
+    fills = {f or PAGE for f in beside}
+    # A class named by its colour (an SVG line's stroke, as the importer names them).
+    stroke = style.get("stroke", cls.lower() if _hex_colour(cls) else None)
+    # A stroke of the very colour of every face beside it draws nothing: a station's trusses,
+    # drawn black in its black space, left its antennas floating. The palette's instead.
+    if stroke is None or fills and all(same_colour(stroke, f) for f in fills):
+        stroke = legible_stroke(class_order.index(cls), fills)
+    style["stroke"] = stroke
     return style
+
+
+def legible_stroke(k: int, fills: set[str]) -> str:
+    """The palette's k-th stroke, or the first after it that stands out from every fill in
+    `fills` (the palette's first stroke is near-black); the one that stands out most when
+    none stands out enough."""
+    n = len(STROKE_PALETTE)
+    best, best_c = STROKE_PALETTE[k % n], -1.0
+    for i in range(n):
+        stroke = STROKE_PALETTE[(k + i) % n]
+        c = min((contrast(stroke, f) or LEGIBLE for f in fills), default=LEGIBLE)
+        if c >= LEGIBLE:
+            return stroke
+        if c > best_c:
+            best, best_c = stroke, c
+    return best
 
 
 @dataclass
@@ -235,12 +263,7 @@ def _faces_group(cv: _Canvas) -> list[str]:
     """One filled path per painted face, its holes cut out."""
     drawing, ends, exterior, vb = cv.drawing, cv.ends, cv.exterior, cv.vb
     face_decos = decorations(cv.ref, "face")
-    label_order = list(cv.ref.face_labels) if cv.ref else []
-    for e in drawing.edges:
-        for name in (e.left, e.right):
-            if name not in label_order:
-                label_order.append(name)
-    plain = [n for n in label_order if n != exterior and not _hex_colour(n)]
+    plain = _plain_labels(cv)
     faces = compute_faces(cv.topology, ends)
     left = [drawing.edges[h >> 1].right if h & 1 else drawing.edges[h >> 1].left
             for h in range(2 * len(drawing.edges))]
@@ -274,6 +297,16 @@ def _faces_group(cv: _Canvas) -> list[str]:
     return out
 
 
+def _plain_labels(cv: _Canvas) -> list[str]:
+    """The face labels that take palette fills, in the order they take them."""
+    label_order = list(cv.ref.face_labels) if cv.ref else []
+    for e in cv.drawing.edges:
+        for name in (e.left, e.right):
+            if name not in label_order:
+                label_order.append(name)
+    return [n for n in label_order if n != cv.exterior and not _hex_colour(n)]
+
+
 def _pattern_paint(cv: _Canvas, style: dict, patterns: dict[tuple, str]) -> str:
     """A face's pattern fill: one <pattern> per image and scale, defined on first use."""
     key = (style["pattern"], float(style.get("pattern-scale", 1.0)))
@@ -296,12 +329,16 @@ def _edges_group(cv: _Canvas) -> list[str]:
         if e.cls not in class_order:
             class_order.append(e.cls)
     by_class: dict[str, list[int]] = {}
+    beside: dict[str, set[str]] = {}          # the face labels a class's edges border
     for i, e in enumerate(edges):
         by_class.setdefault(e.cls, []).append(i)
+        beside.setdefault(e.cls, set()).update((e.left, e.right))
+    plain, face_decos = _plain_labels(cv), decorations(cv.ref, "face")
     out = ['  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">']
     images: list[str] = []
     for cls in sorted(by_class, key=class_order.index):
-        style = edge_paint(cls, class_order, edge_decos)
+        fills = (face_paint(f, plain, cv.exterior, face_decos)[0] for f in sorted(beside[cls]))
+        style = edge_paint(cls, class_order, edge_decos, fills)
         width = float(style.get("width", STROKE_WIDTH * cv.unit))
         d = " ".join(cv.line(i) for i in by_class[cls])
         opacity = fmt(style["opacity"]) if "opacity" in style else None
