@@ -98,11 +98,11 @@ def normalize_color(value: str) -> str | None:
 def luminance(colour: str) -> float | None:
     """The relative luminance of a CSS colour (WCAG 2: 0 black … 1 white), None when it is
     not a colour we understand."""
-    hexed = normalize_color(colour)
-    if hexed is None:
+    rgb = _rgb(colour)
+    if rgb is None:
         return None
-    channels = [int(hexed[i:i + 2], 16) / 255.0 for i in (1, 3, 5)]
-    r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in channels)
+    r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+               for c in (x / 255.0 for x in rgb))
     return 0.2126 * r + 0.7152 * g + 0.0722 * b
 
 
@@ -121,7 +121,15 @@ SAME = 16
 
 def same_colour(a: str, b: str) -> bool:
     """Whether two CSS colours look the same (False when either is not a colour we know)."""
-    ha, hb = normalize_color(a), normalize_color(b)
-    if ha is None or hb is None:
+    ra, rb = _rgb(a), _rgb(b)
+    if ra is None or rb is None:
         return False
-    return all(abs(int(ha[i:i + 2], 16) - int(hb[i:i + 2], 16)) <= SAME for i in (1, 3, 5))
+    return all(abs(x - y) <= SAME for x, y in zip(ra, rb))
+
+
+def _rgb(colour: str) -> tuple[int, int, int] | None:
+    """A CSS colour's channels, 0-255; None when it is not a colour we understand."""
+    hexed = normalize_color(colour)
+    if hexed is None:
+        return None
+    return int(hexed[1:3], 16), int(hexed[3:5], 16), int(hexed[5:7], 16)
