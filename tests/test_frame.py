@@ -673,6 +673,32 @@ def test_an_extent_a_bounded_border_class_cannot_span_names_that_class():
     assert "class side" in d.render() and "^" in d.render()
 
 
+def test_a_line_across_the_frame_is_cut_as_short_as_its_class_allows():
+    """examples/space-station.gg's trusses run from the frame's left side to its right, and
+    modules and panels stand on them. Their pieces are what lies between those parts, not a
+    part's outline, so they keep no proportion of the example's (240-500 px), only their
+    class's 40 px: held to 0.4 of their typical 370 px, every piece needed 148 px, and the
+    run stopped at 17 parts (15 by 300 iterations). Lines that do not cross the frame keep
+    their floor: the castles' walls stand on the ground, but end in the air."""
+    from runtime.engine.costs import default_cost
+    from runtime.geometry.tables import Tables, through_labels
+    ex, g = _framed("space-station.gg")
+    trusses = {k for k, l in enumerate(g.header.labels) if l.cls == "truss"}
+    assert through_labels(g.header) == trusses
+    assert all(Tables.build(g.header).least[k] == 0.0 for k in trusses)
+    for name in ("castle", "flowers", "space-station"):
+        assert not through_labels(compile_example(load_example(ILLUSTRATIONS / f"{name}.gg"))
+                                  .grammar.header)
+    eng = Engine(g, seed=22, cost=default_cost(g.header, 300))
+    stats = eng.run(None, iterations=300)
+    assert stats.applied >= 25
+    host = eng.host
+    pieces = [math.dist(host.pos[v], host.pos[w]) for v, i, w, _ in host.edges()
+              if host.t.label[host.prim[v]][i] in trusses]
+    assert min(pieces) < 148 and min(pieces) >= 40 - 1e-6
+    assert check_drawing(ex, host.to_drawing()) == []
+
+
 def _pieces(host, change=None) -> int:
     """Connected components of the drawing, before `change` or (given) after it."""
     import networkx as nx

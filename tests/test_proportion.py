@@ -16,7 +16,7 @@ import pytest
 
 from conftest import CORPUS, corpus_names
 from runtime.engine.generate import Engine
-from runtime.geometry.tables import PROPORTION
+from runtime.geometry.tables import PROPORTION, through_labels
 from runtime.verifier import check_drawing
 
 from conftest import ILLUSTRATIONS  # noqa: E402
@@ -34,12 +34,13 @@ def short_edges(host, labels, new) -> list[tuple[float, float]]:
     """(length, floor) of every edge at a vertex of `new` shorter than PROPORTION of its
     label's typical length and than the example's shortest edge of that label."""
     t, out = host.t, []
+    through = through_labels(host.header)      # lines across the frame: no floor
     for v, i, w, _ in host.edges():
         if v not in new and w not in new:
             continue
         lab = t.label[host.prim[v]][i]
         ty, least = labels[lab].typical, labels[lab].shortest
-        if ty is None or lab in host.side_labels:
+        if ty is None or lab in host.side_labels or lab in through:
             continue
         floor = min(PROPORTION * ty, least)
         d = math.dist(host.pos[v], host.pos[w])
@@ -102,6 +103,7 @@ def test_no_step_squeezes_an_old_edge_below_its_floor(name):
     was shorter already (it squeezed the castle's old towers into slivers)."""
     _, grammar = _compiled(str(ILLUSTRATIONS / f"{name}.gg"))
     labels = grammar.header.labels
+    through = through_labels(grammar.header)
     eng = Engine(grammar, seed=80)
     for _ in range(400):
         before = _lengths(eng.host)
@@ -117,7 +119,7 @@ def test_no_step_squeezes_an_old_edge_below_its_floor(name):
                 if s is not None and s[0] == w:
                     lab = eng.host.t.label[eng.host.prim[v]][i]
             ty, least = labels[lab].typical, labels[lab].shortest
-            if ty is None or lab in eng.host.side_labels:
+            if ty is None or lab in eng.host.side_labels or lab in through:
                 continue
             floor = min(PROPORTION * ty, least) - 1e-6 * eng.host.t.unit
             assert d >= floor or d >= before[(v, w)] - 1e-6 * eng.host.t.unit, (v, w, d, floor)
@@ -158,3 +160,4 @@ def test_a_failed_length_frees_the_vertices_that_hold_it():
             assert want == ends - host.pinned or not ends - host.pinned
             seen += 1
     assert seen >= 5
+
