@@ -161,3 +161,28 @@ def test_a_failed_length_frees_the_vertices_that_hold_it():
             seen += 1
     assert seen >= 5
 
+
+def test_a_bridge_inside_a_slid_part_is_held_to_its_class(monkeypatch):
+    """A rule's new edge between two vertices of one slid part (its anchor and a member) is
+    tested like any other: the slide keeps the part's shape, so the new edge is as long as
+    the two already stand apart, and that may be too long. Untested, the castle, grown with
+    the floors of every line that runs on through a vertex lifted (a variant of
+    `through_labels` tried in stop 45), joined a slid block to its neighbour at iteration
+    854 by a slope 112 px long where class 2 allows 89."""
+    from compiler.infer import compile_example
+    from grammar_lang.loader import load_example
+    from runtime.engine.costs import default_cost
+    from runtime.geometry import tables
+
+    def every_line_through(header):
+        border = {c.name for c in header.classes if c.border}
+        return frozenset(t >> 1 for p in header.primitives for t in p.ring
+                         if t ^ 1 in p.ring and header.labels[t >> 1].cls not in border)
+
+    monkeypatch.setattr(tables, "through_labels", every_line_through)
+    example = load_example(ILLUSTRATIONS / "castle.gg")
+    grammar = compile_example(example).grammar
+    eng = Engine(grammar, seed=0, cost=default_cost(grammar.header, 4000))
+    eng.run(None, iterations=860)
+    failures = check_drawing(example, eng.host.to_drawing())
+    assert failures == [], "\n".join(f.render() for f in failures[:3])
