@@ -9,6 +9,7 @@ import functools
 import math
 from dataclasses import dataclass, replace
 
+from grammar_lang.frame import border_labels, border_primitives
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
 from grammar_lang.vocabulary import Vocabular, Vocabulary
@@ -131,13 +132,11 @@ def through_labels(header: Header) -> frozenset[int]:
     `examples/space-station.gg`'s trusses have 240-500 px pieces, and at 0.4 of them each
     new piece needed 148 px where the class allows 40, so after 17 parts no stretch held
     another."""
-    border = {c.name for c in header.classes if c.border}
+    border = border_labels(header.labels, header.classes)
     if header.frame is None or not border:
         return frozenset()
-    labels = header.labels
-    on_border = [p.ring for p in header.primitives
-                 if any(labels[t >> 1].cls in border for t in p.ring)]
-    meets = {t for ring in on_border for t in ring if labels[t >> 1].cls not in border}
+    meets = {t for k in border_primitives(header.primitives, border)
+             for t in header.primitives[k].ring if t >> 1 not in border}
     return frozenset(t >> 1 for p in header.primitives for t in p.ring
                      if t ^ 1 in p.ring and t in meets and t ^ 1 in meets)
 
