@@ -19,6 +19,7 @@ drawing, which keeps the unbent geometry.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass, field
@@ -162,6 +163,17 @@ class _Canvas:
     fmt: _Fmt
     defs: list[str] = field(default_factory=list)
 
+    @functools.cached_property
+    def plain(self) -> list[str]:
+        """The face labels that take palette fills, in the order they take them (asked by
+        the faces and by the edges, whose strokes must show against them)."""
+        label_order = list(self.ref.face_labels) if self.ref else []
+        for e in self.drawing.edges:
+            for name in (e.left, e.right):
+                if name not in label_order:
+                    label_order.append(name)
+        return [n for n in label_order if n != self.exterior and not _hex_colour(n)]
+
     def pt(self, p) -> str:
         return f"{self.fmt(p[0])},{self.fmt(-p[1])}"
 
@@ -263,7 +275,7 @@ def _faces_group(cv: _Canvas) -> list[str]:
     """One filled path per painted face, its holes cut out."""
     drawing, ends, exterior, vb = cv.drawing, cv.ends, cv.exterior, cv.vb
     face_decos = decorations(cv.ref, "face")
-    plain = _plain_labels(cv)
+    plain = cv.plain
     faces = compute_faces(cv.topology, ends)
     left = [drawing.edges[h >> 1].right if h & 1 else drawing.edges[h >> 1].left
             for h in range(2 * len(drawing.edges))]
@@ -297,16 +309,6 @@ def _faces_group(cv: _Canvas) -> list[str]:
     return out
 
 
-def _plain_labels(cv: _Canvas) -> list[str]:
-    """The face labels that take palette fills, in the order they take them."""
-    label_order = list(cv.ref.face_labels) if cv.ref else []
-    for e in cv.drawing.edges:
-        for name in (e.left, e.right):
-            if name not in label_order:
-                label_order.append(name)
-    return [n for n in label_order if n != cv.exterior and not _hex_colour(n)]
-
-
 def _pattern_paint(cv: _Canvas, style: dict, patterns: dict[tuple, str]) -> str:
     """A face's pattern fill: one <pattern> per image and scale, defined on first use."""
     key = (style["pattern"], float(style.get("pattern-scale", 1.0)))
@@ -333,7 +335,7 @@ def _edges_group(cv: _Canvas) -> list[str]:
     for i, e in enumerate(edges):
         by_class.setdefault(e.cls, []).append(i)
         beside.setdefault(e.cls, set()).update((e.left, e.right))
-    plain, face_decos = _plain_labels(cv), decorations(cv.ref, "face")
+    plain, face_decos = cv.plain, decorations(cv.ref, "face")
     out = ['  <g id="edges" fill="none" stroke-linecap="round" stroke-linejoin="round">']
     images: list[str] = []
     for cls in sorted(by_class, key=class_order.index):
