@@ -11,7 +11,9 @@ the frame, the shares of the example's face labels and edge classes present, and
 of the frame the drawing covers: the area of the convex hull of every vertex not on the
 frame, over the frame's area. Units count the output as the paper counts its primitives:
 a rigid part (vertices joined by edges of fixed length) is one unit, as are the other
-vertices, the frame aside.
+vertices, the frame aside. `full at` is the first iteration (counted in fifties) at which
+the drawing held 95 % of the most vertices it had during the run: the iterations after it
+change the drawing but no longer grow it.
 
 By default each drawing fills the example's own frame (1540 × 780 px). `--paper-extent`
 fills the extent of the original settings instead (the illustrations' README: castle
@@ -85,7 +87,9 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
             raise
         extent = None                      # its start does not fit there: its own frame
         engine = Engine(result.grammar, seed=seed, cost=cost)
-    summary = engine.run(steps, iterations=iterations or n)
+    trace: list[tuple[int, int]] = []       # (proposals, vertices), every 50 proposals
+    summary = engine.run(steps, progress=lambda s: trace.append((s.proposals, s.vertices)),
+                         iterations=iterations or n)
     t_total = time.perf_counter() - t0
     host = engine.host
     g = nx.Graph()
@@ -113,7 +117,14 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
             "units": nx.number_connected_components(rigid), "extent": host.frame.size,
             "labels": len(faces & wanted) / max(1, len(wanted)), "covered": covered,
             "classes": len(drawn & classes) / max(1, len(classes)),
+            "full_at": _full_at(trace + [(summary.proposals, len(host))]),
             "stop": summary.stop}
+
+
+def _full_at(trace: list[tuple[int, int]]) -> int:
+    """The first iteration of `trace` at which the vertices reached 95 % of their most."""
+    most = max(v for _, v in trace)
+    return next(p for p, v in trace if v >= 0.95 * most)
 
 
 def main(argv=None) -> int:
@@ -132,7 +143,7 @@ def main(argv=None) -> int:
           f"Python {platform.python_version()}")
     print(f"{'example':<14}{'seed':>5}{'iter.':>6}{'steps':>6}{'compile s':>10}{'(paper)':>8}{'total s':>9}{'(paper)':>8}"
           f"{'graphs':>7}{'(paper)':>8}{'rules':>6}{'(paper)':>8}{'vertices':>9}{'units':>6}"
-          f"{'(paper)':>8}{'parts':>6}{'labels':>7}{'classes':>8}{'covered':>8}{'frame':>11}")
+          f"{'(paper)':>8}{'parts':>6}{'labels':>7}{'classes':>8}{'covered':>8}{'full at':>8}{'frame':>11}")
     from grammar_lang.diagnostics import UserError
     for name in args.names:
         whole = []
@@ -154,7 +165,7 @@ def _row(r: dict) -> str:
     return (f"{r['name']:<14}{r['seed']:>5}{r['iterations']:>6}{r['steps']:>6}{r['compile']:>10.2f}"
             f"{gram:>8}{r['total']:>9.1f}{total:>8}{r['graphs']:>7}{graphs:>8}{r['rules']:>6}"
             f"{rules:>8}{r['vertices']:>9}{r['units']:>6}{out:>8}{r['components']:>6}"
-            f"{r['labels']:>7.0%}{r['classes']:>8.0%}{r['covered']:>8.1%}"
+            f"{r['labels']:>7.0%}{r['classes']:>8.0%}{r['covered']:>8.1%}{r['full_at']:>8}"
             f"{'%g×%g' % r['extent']:>11}" + (f"  ({r['stop']})" if r["stop"] else ""))
 
 

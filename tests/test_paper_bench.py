@@ -4,6 +4,9 @@ benchmark itself, not the suite)."""
 
 import sys
 
+from hypothesis import given
+from hypothesis import strategies as st
+
 from conftest import ILLUSTRATIONS, ROOT
 
 sys.path.append(str(ROOT / "benchmarks"))  # last: benchmarks/report.py must not hide `report`
@@ -25,3 +28,12 @@ def test_a_short_run_over_seeds_prints_a_row_each_and_the_count(monkeypatch, cap
     assert [r[1] for r in rows[:2]] == ["3", "4"] and all(r[2] == "20" for r in rows[:2])
     # The flowers' start holds every part of the example: every drawing has them all.
     assert lines[-1].split()[-4:] == ["in", "2", "of", "2"]
+
+
+@given(st.lists(st.integers(0, 10_000), min_size=1, max_size=60))
+def test_full_at_is_the_first_iteration_that_holds_95_percent_of_the_most(counts):
+    trace = [(50 * (k + 1), v) for k, v in enumerate(counts)]
+    at = paper._full_at(trace)
+    reached = [p for p, v in trace if v >= 0.95 * max(counts)]
+    assert at == reached[0]
+    assert all(v < 0.95 * max(counts) for p, v in trace if p < at)
