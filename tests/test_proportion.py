@@ -186,3 +186,50 @@ def test_a_bridge_inside_a_slid_part_is_held_to_its_class(monkeypatch):
     eng.run(None, iterations=860)
     failures = check_drawing(example, eng.host.to_drawing())
     assert failures == [], "\n".join(f.render() for f in failures[:3])
+
+
+def _stretches(path: str, iterations: int, monkeypatch) -> list[tuple[bool, float, float]]:
+    """Per proposal of a short run: (whether it cuts a line across the frame, the stretch
+    the solver draws its new parts at, the stretch its neighbourhood measured)."""
+    from runtime.engine.costs import default_cost
+    from runtime.geometry import solver as S
+    seen: list[tuple[bool, float, float]] = []
+    scale_of = S.Solver._local_scale
+
+    def recorded(self):
+        scale, stretch = scale_of(self)
+        host = self.host
+        cut = [host.t.label[host.prim[v]][i] for v, i in self.change.cut]
+        cut += [host.t.label[host.prim[v]][i] for v in self.change.removed
+                for i, s in enumerate(host.link[v]) if s is not None]
+        # The measured stretch: the same call with the frame out of sight.
+        frame, host.frame = host.frame, None
+        try:
+            measured = scale_of(self)[1]
+        finally:
+            host.frame = frame
+        seen.append((any(lab in host.t.through for lab in cut), stretch, measured))
+        return scale, stretch
+
+    monkeypatch.setattr(S.Solver, "_local_scale", recorded)
+    _, grammar = _compiled(path)
+    Engine(grammar, seed=3, cost=default_cost(grammar.header, iterations)).run(
+        None, iterations=iterations)
+    return seen
+
+
+def test_in_a_frame_new_parts_are_drawn_at_no_less_than_the_least_stretch(monkeypatch):
+    """A squeezed neighbourhood does not shrink a scene's new parts below LEAST_STRETCH of the
+    example's sizes (the castle's towers thinned to poles), but a part put on a stretch of a
+    line across the frame is drawn to fit it, and an unframed drawing's parts shrink with it."""
+    from runtime.geometry.solver import LEAST_STRETCH
+    castle = _stretches(str(ILLUSTRATIONS / "castle.gg"), 300, monkeypatch)
+    assert any(m < LEAST_STRETCH for _, _, m in castle)          # the floor is reached
+    assert all(s == max(m, LEAST_STRETCH) for _, s, m in castle)
+    station = _stretches(str(Path(__file__).parent.parent / "examples" / "space-station.gg"),
+                         300, monkeypatch)
+    assert any(on and m < LEAST_STRETCH for on, _, m in station)
+    assert all(s == (m if on else max(m, LEAST_STRETCH)) for on, s, m in station)
+    loose = _stretches(str(CORPUS / "h-complex.svg"), 300, monkeypatch)
+    assert any(m < LEAST_STRETCH for _, _, m in loose)
+    assert all(s == m for _, s, m in loose)

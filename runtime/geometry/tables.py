@@ -37,6 +37,8 @@ class Tables(Vocabular):
     typical: tuple[float, ...] = ()
     # Per edge label: the shortest a drawn edge may be (0: no floor), see `least_lengths`.
     least: tuple[float, ...] = ()
+    # The lines across a frame that things stand on (`through_labels`).
+    through: frozenset[int] = frozenset()
 
     # Read through Vocabular's property on every test of a step (27 reads per step on curl).
     unit = functools.cached_property(lambda self: self.vocabulary.unit)
@@ -91,12 +93,13 @@ class Tables(Vocabular):
             c = classes.get(lab.cls) or EdgeClass(lab.cls).resolved(unit)
             fixed = lab.length if (c.rigid and lab.length) else c.fixed
             lengths.append((float(c.min_length), float(c.max_length), fixed, c.tile))
+        through = through_labels(header)
         return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
                       tuple(outer), tuple(lengths), tuple(l.cls for l in labels),
                       tuple((l.left, l.right) for l in labels),
                       replace(header.vocabulary, unit=unit),
                       tuple(math.nan if l.typical is None else l.typical for l in labels),
-                      least_lengths(header))
+                      least_lengths(header, through), through)
 
 
 # A drawn edge is at least this share of its label's typical length, or as short as the
@@ -113,11 +116,11 @@ class Tables(Vocabular):
 PROPORTION = 0.4
 
 
-def least_lengths(header: Header) -> tuple[float, ...]:
+def least_lengths(header: Header, through: frozenset[int] | None = None) -> tuple[float, ...]:
     """Per label, the shortest a drawn edge may be: min(PROPORTION·typical, the example's
     shortest); no floor (0) where either is unknown (a hand-written rule file), nor on the
-    lines things stand on (`through_labels`)."""
-    through = through_labels(header)
+    lines things stand on (`through`: `through_labels`, worked out when not given)."""
+    through = through_labels(header) if through is None else through
     return tuple(min(PROPORTION * l.typical, l.shortest)
                  if l.typical is not None and l.shortest is not None and k not in through
                  else 0.0 for k, l in enumerate(header.labels))
