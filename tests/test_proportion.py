@@ -34,7 +34,7 @@ def short_edges(host, labels, new) -> list[tuple[float, float]]:
     """(length, floor) of every edge at a vertex of `new` shorter than PROPORTION of its
     label's typical length and than the example's shortest edge of that label."""
     t, out = host.t, []
-    through = through_labels(host.header)      # lines across the frame: no floor
+    through = t.through                        # lines across the frame: no floor
     for v, i, w, _ in host.edges():
         if v not in new and w not in new:
             continue
