@@ -412,9 +412,12 @@ class Solver(Freeing, Planarity):
         """Around what length a new edge of label `lab` is drawn: its typical length in the
         example, stretched as the neighbourhood is, so that the parts of a structure grown
         in one move keep their proportions (a window's edges do not come out as long as a
-        tower's); else the local scale. A frame's sides have no typical length."""
-        typical = self.host.t.typical
-        ty = typical[lab] if typical and lab not in self.host.side_labels else math.nan
+        tower's); else the local scale. A frame's sides have no typical length, but where
+        lines across the frame end on them (`Tables.gaps`: a strip's height)."""
+        t = self.host.t
+        typical = t.typical
+        ty = typical[lab] if typical and (lab not in self.host.side_labels or lab in t.gaps) \
+            else math.nan
         return self.stretch * ty if ty == ty else self.scale
 
     def _round(self, free, edges, kept, fact: Factor, b: np.ndarray) -> Round:
@@ -496,7 +499,8 @@ class Solver(Freeing, Planarity):
         proportion (Tables.least); a kept one (`kn`: its length now) only as far as it keeps
         it already: the projection may shorten it when an end moves, down to the floor or to
         its present length when that is shorter (held to the floor outright, the corpus
-        letter a's drawings lost half their variety). A frame's side has no floor."""
+        letter a's drawings lost half their variety). A frame's side has no floor, but where
+        lines across the frame end on it (`Tables.gaps`)."""
         b = self._label_bounds.get(lab)
         if b is None:
             b = self._label_bounds[lab] = self._bounds_of(lab)
@@ -514,7 +518,7 @@ class Solver(Freeing, Planarity):
         t = self.host.t
         tol = self.tol
         l, h = t.lengths[lab][:2]
-        if lab in self.host.side_labels or not t.least:
+        if lab in self.host.side_labels and lab not in t.gaps or not t.least:
             return l - tol, h + tol, l - tol, None
         return max(l - tol, t.least[lab]), h + tol, l - tol, t.least[lab]
 

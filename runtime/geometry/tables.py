@@ -39,6 +39,9 @@ class Tables(Vocabular):
     least: tuple[float, ...] = ()
     # The lines across a frame that things stand on (`through_labels`).
     through: frozenset[int] = frozenset()
+    # The frame's side labels at those lines' ends (`gap_labels`): their pieces are the
+    # heights of the strips between the lines, and keep the floor of `least`.
+    gaps: frozenset[int] = frozenset()
 
     # Read through Vocabular's property on every test of a step (27 reads per step on curl).
     unit = functools.cached_property(lambda self: self.vocabulary.unit)
@@ -94,12 +97,13 @@ class Tables(Vocabular):
             fixed = lab.length if (c.rigid and lab.length) else c.fixed
             lengths.append((float(c.min_length), float(c.max_length), fixed, c.tile))
         through = through_labels(header)
+        gaps = gap_labels(header, through)
         return Tables(tuple(rings), tuple(dirs), tuple(lefts), tuple(rights), tuple(labs),
                       tuple(outer), tuple(lengths), tuple(l.cls for l in labels),
                       tuple((l.left, l.right) for l in labels),
                       replace(header.vocabulary, unit=unit),
                       tuple(math.nan if l.typical is None else l.typical for l in labels),
-                      least_lengths(header, through), through)
+                      least_lengths(header, through), through, gaps)
 
 
 # A drawn edge is at least this share of its label's typical length, or as short as the
@@ -142,6 +146,20 @@ def through_labels(header: Header) -> frozenset[int]:
              for t in header.primitives[k].ring if t >> 1 not in border}
     return frozenset(t >> 1 for p in header.primitives for t in p.ring
                      if t ^ 1 in p.ring and t in meets and t ^ 1 in meets)
+
+
+def gap_labels(header: Header, through: frozenset[int]) -> frozenset[int]:
+    """The border labels that meet a line across the frame (`through_labels`) at its end: the
+    frame's sides where the village's strip lines end. A piece of such a side is the height
+    of a strip at the frame, not a length the frame sets, so it keeps its label's floor like
+    any drawn edge (without it the paper's village at its seed 65 squeezed twelve strips into
+    4-8 px at the frame's sides, where the example's are 160-200 px)."""
+    if not through:
+        return frozenset()
+    border = border_labels(header.labels, header.classes)
+    return frozenset(t >> 1 for p in header.primitives
+                     if any(u >> 1 in through for u in p.ring)
+                     for t in p.ring if t >> 1 in border)
 
 
 def grid_cell(t: Tables) -> float:
