@@ -603,7 +603,7 @@ def test_only_the_sides_where_lines_across_the_frame_end_keep_a_floor():
         if name != "village":
             assert t.gaps == frozenset(), name
             continue
-        # Both sides, grass on their inside, and a floor from the example's strips.
+        # Its left and right sides, with a floor from the example's strips.
         assert len(t.gaps) == 2
         assert all(t.least[k] == min(PROPORTION * labels[k].typical, labels[k].shortest) > 0
                    for k in t.gaps)
