@@ -18,7 +18,8 @@ from grammar_lang import boundary as bd
 from grammar_lang.algorithms.components import glued_components
 from dataclasses import replace
 
-from grammar_lang.frame import Frame, bare_sides, border_labels, border_primitives, corner_primitives
+from grammar_lang.frame import (Frame, bare_sides, border_labels, border_primitives,
+                                corner_primitives, across_labels)
 from grammar_lang.graph import Side, face_walk
 from grammar_lang.rules import Rule
 
@@ -83,21 +84,59 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
             if prims[e[0]] not in corners and prims[e[2]] not in corners
             and bd.label_of(rings[e[0]][e[1]]) not in bare]
     ring_len = [len(r) for r in prim_rings]
-    rules, seen = [], set()
-    for comp in glued_components(range(len(prims)), keep):
-        if prims[comp[0]] in corners:
+    return tuple(_standing(glued_components(range(len(prims)), keep), slot_edges, prims,
+                           prim_rings, ring_len, "stand", lambda comp: prims[comp[0]] not in corners))
+
+
+def line_starters(example, slot_edges, taken: set) -> tuple[Rule, ...]:
+    """Rules that stand the example's structures on a line across the frame
+    (`frame.across_labels`), as `frame_starters` stands them on a side: with every edge of
+    one such label cut, each piece that hangs on the rest by two half-edges of that label
+    only, and whose boundary is that label's bare edge, becomes a rule `structure ⇄ that
+    edge`. Grown, it puts a copy of an example structure on any edge
+    of the label, so the drawing stays locally similar. The hierarchy finds such a rule only
+    once it has glued the whole structure: the paper's village, limited at 1,000 graphs, had
+    one for its flat-roofed house and none for its two houses of two parts, which it could
+    add only beside one of their kind. `taken`: the canonical keys of rules' left sides the
+    grammar has already; structures on the border are the frame's."""
+    border = border_labels(example.labels, example.classes)
+    on_border = border_primitives(example.primitives, border)
+    prims = example.vertex_primitive
+    rings = [example.primitives[p].ring for p in prims]
+    prim_rings = [p.ring for p in example.primitives]
+    ring_len = [len(r) for r in prim_rings]
+    labels = sorted(across_labels(example.primitives, example.labels, example.classes))
+    rules: list[Rule] = []
+    seen = set(taken)
+    for lab in labels:
+        keep = [e for e in slot_edges if bd.label_of(rings[e[0]][e[1]]) != lab]
+        rules += _standing(glued_components(range(len(prims)), keep), slot_edges, prims,
+                           prim_rings, ring_len, "line",
+                           lambda comp: not any(prims[v] in on_border for v in comp), seen,
+                           first=len(rules))
+    return tuple(rules)
+
+
+def _standing(comps, slot_edges, prims, prim_rings, ring_len, name: str, wanted,
+              seen: set | None = None, first: int = 0) -> list[Rule]:
+    """`structure ⇄ edge` for each of `comps` that `wanted` keeps and stands on one edge,
+    one rule per shape (`seen`: canonical keys of left sides already had), named `name`
+    and a number from `first`."""
+    rules, seen = [], set() if seen is None else seen
+    for comp in comps:
+        if not wanted(comp):
             continue
         # A structure on several feet (a platform's legs) holds the side between them too.
         members = set(comp)
         inner = [e for e in slot_edges if e[0] in members and e[2] in members]
         side = _component_side(comp, inner, prims, prim_rings)
-        rule = None if side is None else _standing_rule(side, prim_rings, len(rules))
+        rule = None if side is None else _standing_rule(side, prim_rings, f"{name}{first + len(rules)}")
         if rule is not None:
             key = canonical_key(side_graph(rule.lhs), ring_len)    # one rule per shape
             if key not in seen:
                 seen.add(key)
                 rules.append(rule)
-    return tuple(rules)
+    return rules
 
 
 def _component_side(comp, edges, prims, prim_rings) -> Side | None:
@@ -117,7 +156,7 @@ def _component_side(comp, edges, prims, prim_rings) -> Side | None:
     return Side(verts, es, bd.from_gaps(walk))
 
 
-def _standing_rule(side: Side, rings, k: int) -> Rule | None:
+def _standing_rule(side: Side, rings, name: str) -> Rule | None:
     """`side ⇄ wire` when the side's boundary is one bare edge's, ā a ∧, from some start."""
     for r, start in enumerate(side.boundary):
         if not isinstance(start, tuple):
@@ -128,5 +167,5 @@ def _standing_rule(side: Side, rings, k: int) -> Rule | None:
             continue
         wire = Side((), (), ((-1, 1), (-1, 0), bd.UP), wires=(t[0] ^ 1,))
         if wire.tokens(rings) == t:
-            return Rule(f"stand{k}", lhs, wire)
+            return Rule(name, lhs, wire)
     return None

@@ -35,7 +35,7 @@ from . import grouping
 from .regroup import regroup
 from .canon import canonical_key, split
 from .apply import side_graph
-from .framing import frame_rules, frame_starters, frame_with_start
+from .framing import frame_rules, frame_starters, frame_with_start, line_starters
 from .gluing import Graph, block_slots, children, unit_places
 from .hierarchy import KEPT, OVER, PRUNED, REDUCIBLE, RULE, Hierarchy, Node
 from .boundary_match import Match, Matcher, Piece
@@ -713,7 +713,10 @@ class Inference:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
             rules, dropped = frame_rules(rules, self.ex, own | self.reached)
             rules = self._reached_unopened(rules)
-            rules += frame_starters(self.ex, example_slots(self.ex))
+            slots = example_slots(self.ex)
+            rules += frame_starters(self.ex, slots)
+            rules += line_starters(self.ex, slots, {canonical_key(side_graph(r.lhs), self.ring_len)
+                                                    for r in rules})
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(
             example=self.ex.name,

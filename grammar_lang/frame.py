@@ -140,6 +140,34 @@ def border_primitives(primitives, border) -> frozenset[int]:
                      if any(bd.label_of(t) in border for t in p.ring))
 
 
+def across_labels(primitives, labels, classes) -> frozenset[int]:
+    """The labels of the lines across a frame: a line that meets the frame's border at both
+    ends (a border vertex has it pointing in, another pointing back out), whatever stands on
+    it in between (the village's skyline runs from side to side, broken by houses and hills).
+    The compiler stands the example's structures on them (`line_starters`)."""
+    meets = _meeting(primitives, labels, classes)
+    return frozenset(t >> 1 for t in meets if t ^ 1 in meets)
+
+
+def through_labels(primitives, labels, classes) -> frozenset[int]:
+    """The lines across a frame that things stand on (`across_labels`) and that run on
+    through a vertex, with something standing off it there (a truss with a panel's strut on
+    it). The runtime lets their pieces be as short as their class allows: they are the
+    stretches between what stands on them, not a part's outline (`examples/space-station.gg`'s
+    trusses have 240-500 px pieces, and at 0.4 of them each new piece needed 148 px where
+    the class allows 40, so after 17 parts no stretch held another)."""
+    meets = _meeting(primitives, labels, classes)
+    return frozenset(t >> 1 for p in primitives for t in p.ring
+                     if t ^ 1 in p.ring and t in meets and t ^ 1 in meets)
+
+
+def _meeting(primitives, labels, classes) -> frozenset[int]:
+    """The half-edges of lines, not border, at the border's vertices."""
+    border = border_labels(labels, classes)
+    return frozenset(t for k in border_primitives(primitives, border)
+                     for t in primitives[k].ring if t >> 1 not in border)
+
+
 def find_frame(ex) -> Frame | None:
     """The example's frame, or None when it has no border edges. A border that does not close
     into one loop is the user's error, located at one of its edges."""

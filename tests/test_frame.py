@@ -465,6 +465,86 @@ def test_a_frame_whose_sides_change_label_starts_from_its_frame_component(villag
     assert compile_example(castle).grammar.header.frame.start is None    # bare sides
 
 
+@pytest.mark.parametrize("path", [ILLUSTRATIONS / f"{n}.gg" for n in NAMES]
+                         + [EXAMPLES / "castle-scene.gg", EXAMPLES / "village.gg"])
+def test_a_structure_on_a_line_becomes_a_rule_that_puts_it_on_a_bare_edge(path):
+    """framing.line_starters: each rule takes one bare edge to a structure of the example
+    standing on an edge of that label (the same boundary), holds nothing of the frame, and
+    has a left side no other rule of the grammar has."""
+    from compiler.apply import side_graph
+    from compiler.canon import canonical_key
+    ex = load_example(path)
+    g = compile_example(ex).grammar
+    rings = [p.ring for p in ex.primitives]
+    on_border = border_primitives(ex.primitives, border_labels(ex.labels, ex.classes))
+    keys = Counter(canonical_key(side_graph(r.lhs), [len(r) for r in rings]) for r in g.rules)
+    for r in (r for r in g.rules if r.name.startswith("line")):
+        assert not r.rhs.vertices and len(r.rhs.wires) == 1, r.name
+        assert r.lhs.tokens(rings) == r.rhs.tokens(rings), r.name
+        assert not set(r.lhs.vertices) & on_border, r.name
+        assert keys[canonical_key(side_graph(r.lhs), [len(r) for r in rings])] == 1, r.name
+
+
+def _on_a_line(widths, heights, roof: bool) -> str:
+    """A framed example: land under sky, the skyline from side to side, and one structure
+    of boxes side by side (faces p0, p1, ...) standing on it, a roof over them or not."""
+    x, parts = 300, []
+    for k, (w, h) in enumerate(zip(widths, heights)):
+        parts.append(f"polygon p{k} rect ({x}, 150) ({x + w}, {150 + h})")
+        x += w
+    if roof:
+        top = 150 + max(heights)
+        parts = [f"polygon p{k} rect ({300 + sum(widths[:k])}, 150) "
+                 f"({300 + sum(widths[:k + 1])}, {top})" for k in range(len(widths))]
+        parts.append(f"polygon roof (300, {top}) ({x}, {top}) ({(300 + x) // 2}, {top + 40})")
+    faces = "".join(f"face p{k} #{k + 1:02d}0000\n" for k in range(len(widths)))
+    return (f'example "Line"\noptions {{ merge-distance: 1 }}\nface sky #d6ecf7\n'
+            f"face land #a8d080\nface roof #0000ff\n{faces}class frame {{ border }}\n"
+            "class line { min: 40; max: 1600 }\npolygon sky rect (0, 0) (1200, 600)\n"
+            "polygon land rect (0, 0) (1200, 150)\npolyline (0, 150) (1200, 150) class line\n"
+            + "\n".join(parts) + "\n"
+            + "".join(f"polyline {a} {b} class frame\n" for a, b in
+                      (("(0, 0)", "(1200, 0)"), ("(1200, 0)", "(1200, 600)"),
+                       ("(1200, 600)", "(0, 600)"), ("(0, 600)", "(0, 0)"))))
+
+
+@settings(max_examples=12, deadline=None)
+@given(widths=st.lists(st.integers(4, 12), min_size=1, max_size=3),
+       heights=st.lists(st.integers(3, 9), min_size=3, max_size=3), roof=st.booleans())
+def test_a_structure_on_a_line_across_the_frame_can_be_put_on_a_bare_edge(tmp_path_factory,
+                                                                          widths, heights, roof):
+    """Whatever the hierarchy reaches, some rule takes one bare edge of the skyline to the
+    whole structure standing on it."""
+    gg = tmp_path_factory.mktemp("line") / "line.gg"
+    gg.write_text(_on_a_line([10 * w for w in widths], [10 * h for h in heights], roof))
+    ex = load_example(gg)
+    g = compile_example(ex).grammar
+    rings = [p.ring for p in ex.primitives]
+    wanted = {f"p{k}" for k in range(len(widths))} | ({"roof"} if roof else set())
+
+    def faces(side):
+        return {f for p in side.vertices for t in rings[p]
+                for f in (ex.labels[t >> 1].left, ex.labels[t >> 1].right)}
+    assert any(wanted <= faces(r.lhs) for r in g.rules
+               if not r.rhs.vertices and len(r.rhs.wires) == 1)
+
+
+def test_every_house_of_the_village_can_be_put_on_a_bare_line(village):
+    """The village's grammar, limited at 1,000 graphs, found a rule that puts its
+    flat-roofed house on a line, but none for its two houses of two parts and a roof, which
+    it added only beside one of their kind. With the line rules every face label of the
+    example is put on a bare edge by some rule."""
+    ex, res = village
+    rings = [p.ring for p in ex.primitives]
+    labels = ex.labels
+
+    def faces(side):
+        return {f for p in side.vertices for t in rings[p]
+                for f in (labels[t >> 1].left, labels[t >> 1].right)}
+    put = set().union(*(faces(r.lhs) for r in res.grammar.rules if not r.rhs.vertices))
+    assert set(ex.face_labels) - {ex.exterior} <= put
+
+
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_a_frame_start_is_placed_and_grown_inside_its_frame(village, seed):
     ex, res = village

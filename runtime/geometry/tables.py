@@ -9,7 +9,7 @@ import functools
 import math
 from dataclasses import dataclass, replace
 
-from grammar_lang.frame import border_labels, border_primitives
+from grammar_lang.frame import border_labels, through_labels as frame_through_labels
 from grammar_lang.rules import Header
 from grammar_lang.source import EdgeClass
 from grammar_lang.vocabulary import Vocabular, Vocabulary
@@ -131,21 +131,10 @@ def least_lengths(header: Header, through: frozenset[int] | None = None) -> tupl
 
 
 def through_labels(header: Header) -> frozenset[int]:
-    """The labels of the lines across a frame that things stand on: a line that meets the
-    frame's border at both ends (a border vertex has it pointing in, another pointing back
-    out) and runs on through a vertex in between, with something standing off it there (a
-    truss with a panel's strut on it). Its pieces are the stretches between what stands on
-    it, not a part's outline, so they may be as short as their class allows:
-    `examples/space-station.gg`'s trusses have 240-500 px pieces, and at 0.4 of them each
-    new piece needed 148 px where the class allows 40, so after 17 parts no stretch held
-    another."""
-    border = border_labels(header.labels, header.classes)
-    if header.frame is None or not border:
+    """`frame.through_labels` of a rule file's header (none without a frame)."""
+    if header.frame is None:
         return frozenset()
-    meets = {t for k in border_primitives(header.primitives, border)
-             for t in header.primitives[k].ring if t >> 1 not in border}
-    return frozenset(t >> 1 for p in header.primitives for t in p.ring
-                     if t ^ 1 in p.ring and t in meets and t ^ 1 in meets)
+    return frame_through_labels(header.primitives, header.labels, header.classes)
 
 
 def gap_labels(header: Header, through: frozenset[int]) -> frozenset[int]:
