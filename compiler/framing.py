@@ -70,8 +70,8 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
     the side as it is with nothing on it) becomes a rule `structure ⇄ that one side edge`,
     a wired rule (§4.3): grown, it puts a copy of an example structure on the side, so the
     drawing stays locally similar. A structure that stands on several feet takes the bare
-    side between its feet with it. Structures that meet the border elsewhere (a line across the
-    frame from side to side) are left to the inferred rules.
+    side between its feet with it. Structures that stand on a line across the frame from
+    side to side are `line_starters`'.
     """
     border = border_labels(example.labels, example.classes)
     corners = corner_primitives(example.primitives, example.labels, border)
@@ -93,12 +93,14 @@ def line_starters(example, slot_edges, taken: set) -> tuple[Rule, ...]:
     (`frame.across_labels`), as `frame_starters` stands them on a side: with every edge of
     one such label cut, each piece that hangs on the rest by two half-edges of that label
     only, and whose boundary is that label's bare edge, becomes a rule `structure ⇄ that
-    edge`. Grown, it puts a copy of an example structure on any edge
-    of the label, so the drawing stays locally similar. The hierarchy finds such a rule only
-    once it has glued the whole structure: the paper's village, limited at 1,000 graphs, had
-    one for its flat-roofed house and none for its two houses of two parts, which it could
-    add only beside one of their kind. `taken`: the canonical keys of rules' left sides the
-    grammar has already; structures on the border are the frame's."""
+    edge`. Grown, it puts a copy of an example structure on any edge of the label, so the
+    drawing stays locally similar. Lines that end in the air are left alone: on a castle's
+    wall tops such a rule put a merlon into the side of a merlon, and rows of teeth came out
+    as stairs. The hierarchy finds such a rule only once it has glued the whole structure:
+    the paper's village, limited at 1,000 graphs, had one for its flat-roofed house and none
+    for its two houses of two parts, which it could add only beside one of their kind.
+    `taken`: the canonical keys of rules' left sides the grammar has already; structures on
+    the border are the frame's."""
     border = border_labels(example.labels, example.classes)
     on_border = border_primitives(example.primitives, border)
     prims = example.vertex_primitive
