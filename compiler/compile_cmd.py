@@ -86,7 +86,10 @@ def summary_table(result: CompileResult, target: str) -> Table:
     t.add_row("primitives", f"{r.primitives} ({r.blocks} blocks after grouping)")
     t.add_row("hierarchy graphs", f"{r.hierarchy_graphs} ({r.irreducible} irreducible, "
               f"{r.pruned} pruned, {r.generations} generations)")
-    t.add_row("rules", f"{r.rules} + {r.starters} starter{'s' if r.starters != 1 else ''}")
+    n = r.rules_stood
+    stood = f" ({n} stand{'s' if n == 1 else ''} a structure on the frame or a line across it)" \
+        if n else ""
+    t.add_row("rules", f"{r.rules} + {r.starters} starter{'s' if r.starters != 1 else ''}{stood}")
     t.add_row("time", f"{r.seconds:.2f} s")
     t.add_row("result", r.verdict)
     if not r.complete and r.remaining_boundaries:

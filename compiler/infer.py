@@ -70,6 +70,8 @@ class Report:
     remaining_boundaries: tuple[str, ...] = ()
     frame_rules_dropped: int = 0      # rules that would create, move or delete the frame
     rules_beside: int = 0             # of `rules`, those grown beside a complete set
+    rules_stood: int = 0              # of `rules`, those that stand a structure on the frame
+                                      # or on a line across it (framing)
     # The same few remaining graphs, for drawing (`ggc report`); not part of the JSON summary.
     remaining_sides: tuple[Side, ...] = field(default=(), compare=False)
 
@@ -709,14 +711,16 @@ class Inference:
         shown = sorted(remaining, key=lambda n: n.rank)[:5]
         rules = self._rules()
         dropped = 0
+        stood: tuple[Rule, ...] = ()
         if self.frame is not None:
             own = {canonical_key(g, self.ring_len) for g in example_graphs(self.ex)}
             rules, dropped = frame_rules(rules, self.ex, own | self.reached)
             rules = self._reached_unopened(rules)
             slots = example_slots(self.ex)
-            rules += frame_starters(self.ex, slots)
-            rules += line_starters(self.ex, slots, {canonical_key(side_graph(r.lhs), self.ring_len)
-                                                    for r in rules})
+            stood = frame_starters(self.ex, slots)
+            stood += line_starters(self.ex, slots, {canonical_key(side_graph(r.lhs),
+                                                                  self.ring_len) for r in rules})
+            rules += stood
             self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
         report = Report(
             example=self.ex.name,
@@ -736,6 +740,7 @@ class Inference:
                                        for n in shown),
             frame_rules_dropped=dropped,
             rules_beside=sum(1 for r in rules if r.name in self.beside),
+            rules_stood=len(stood),
             remaining_sides=tuple(n.graph.side() for n in shown),
         )
         return CompileResult(Grammar(header(self.ex, not limited, self.frame), rules), report)

@@ -552,6 +552,9 @@ def test_every_house_of_the_village_can_be_put_on_a_bare_line(village):
                 for f in (labels[t >> 1].left, labels[t >> 1].right)}
     put = set().union(*(faces(r.lhs) for r in res.grammar.rules if not r.rhs.vertices))
     assert set(ex.face_labels) - {ex.exterior} <= put
+    # The compile's summary counts them.
+    assert res.report.rules_stood == sum(r.name.startswith("line") for r in res.grammar.rules)
+    assert res.report.rules_stood > 0
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
