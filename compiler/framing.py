@@ -85,7 +85,8 @@ def frame_starters(example, slot_edges) -> tuple[Rule, ...]:
             and bd.label_of(rings[e[0]][e[1]]) not in bare]
     ring_len = [len(r) for r in prim_rings]
     return tuple(_standing(glued_components(range(len(prims)), keep), slot_edges, prims,
-                           prim_rings, ring_len, "stand", lambda comp: prims[comp[0]] not in corners))
+                           prim_rings, ring_len, "stand",
+                           lambda comp: prims[comp[0]] not in corners))
 
 
 def line_starters(example, slot_edges, taken: set) -> tuple[Rule, ...]:
@@ -132,7 +133,8 @@ def _standing(comps, slot_edges, prims, prim_rings, ring_len, name: str, wanted,
         members = set(comp)
         inner = [e for e in slot_edges if e[0] in members and e[2] in members]
         side = _component_side(comp, inner, prims, prim_rings)
-        rule = None if side is None else _standing_rule(side, prim_rings, f"{name}{first + len(rules)}")
+        rule = None if side is None else \
+            _standing_rule(side, prim_rings, f"{name}{first + len(rules)}")
         if rule is not None:
             key = canonical_key(side_graph(rule.lhs), ring_len)    # one rule per shape
             if key not in seen:
