@@ -721,7 +721,7 @@ class Inference:
             stood += line_starters(self.ex, slots, {canonical_key(side_graph(r.lhs),
                                                                   self.ring_len) for r in rules})
             rules += stood
-            self.frame = frame_with_start(self.frame, self.ex, example_slots(self.ex))
+            self.frame = frame_with_start(self.frame, self.ex, slots)
         report = Report(
             example=self.ex.name,
             primitives=len(self.rings),
