@@ -156,9 +156,9 @@ def through_labels(primitives, labels, classes) -> frozenset[int]:
     stretches between what stands on them, not a part's outline (`examples/space-station.gg`'s
     trusses have 240-500 px pieces, and at 0.4 of them each new piece needed 148 px where
     the class allows 40, so after 17 parts no stretch held another)."""
-    meets = _meeting(primitives, labels, classes)
+    across = across_labels(primitives, labels, classes)
     return frozenset(t >> 1 for p in primitives for t in p.ring
-                     if t ^ 1 in p.ring and t in meets and t ^ 1 in meets)
+                     if t >> 1 in across and t ^ 1 in p.ring)
 
 
 def _meeting(primitives, labels, classes) -> frozenset[int]:
