@@ -41,7 +41,7 @@ def short_edges(host, labels, new) -> list[tuple[float, float]]:
             continue
         lab = t.label[host.prim[v]][i]
         ty, least = labels[lab].typical, labels[lab].shortest
-        if ty is None or lab in host.side_labels and lab not in t.gaps or lab in through:
+        if ty is None or lab in host.unsized_sides or lab in through:
             continue
         floor = min(PROPORTION * ty, least)
         d = math.dist(host.pos[v], host.pos[w])
@@ -120,8 +120,7 @@ def test_no_step_squeezes_an_old_edge_below_its_floor(name):
                 if s is not None and s[0] == w:
                     lab = eng.host.t.label[eng.host.prim[v]][i]
             ty, least = labels[lab].typical, labels[lab].shortest
-            if ty is None or lab in eng.host.side_labels and lab not in eng.host.t.gaps \
-                    or lab in through:
+            if ty is None or lab in eng.host.unsized_sides or lab in through:
                 continue
             floor = min(PROPORTION * ty, least) - 1e-6 * eng.host.t.unit
             assert d >= floor or d >= before[(v, w)] - 1e-6 * eng.host.t.unit, (v, w, d, floor)

@@ -64,6 +64,7 @@ class Host:
         self.on_border: frozenset[int] = frozenset()  # primitives with a border half-edge
         self.border_labels: frozenset[int] = frozenset()
         self.side_labels: frozenset[int] = frozenset()      # the frame's bare sides
+        self.unsized_sides: frozenset[int] = frozenset()    # those but the gaps
         self.frame_face: str | None = None          # the face just inside the frame
 
     # --- reading ----------------------------------------------------------------------------

@@ -35,6 +35,7 @@ class HostView(Protocol):
     on_border: frozenset[int]
     border_labels: frozenset[int]
     side_labels: frozenset[int]
+    unsized_sides: frozenset[int]           # side_labels but the gaps (Tables.gaps)
     frame_face: str | None
 
     def __len__(self) -> int: ...

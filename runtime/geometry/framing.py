@@ -69,6 +69,9 @@ def _mark(host: HostView, frame: Frame, ids: list[int]) -> None:
     # sky's label, so a tower's foot has the sky beside it too.
     host.side_labels = frozenset(k for k in host.border_labels
                                  if {h.labels[k].left, h.labels[k].right} <= {inside, outside})
+    # Of those, the ones with no length of their own, neither typical nor floor: every side
+    # but the gaps where lines across the frame end (a strip's height at the frame).
+    host.unsized_sides = host.side_labels - host.t.gaps
     host.on_border = border_primitives(h.primitives, host.border_labels)
 
 

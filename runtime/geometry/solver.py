@@ -416,8 +416,7 @@ class Solver(Freeing, Planarity):
         lines across the frame end on them (`Tables.gaps`: a strip's height)."""
         t = self.host.t
         typical = t.typical
-        ty = typical[lab] if typical and (lab not in self.host.side_labels or lab in t.gaps) \
-            else math.nan
+        ty = typical[lab] if typical and lab not in self.host.unsized_sides else math.nan
         return self.stretch * ty if ty == ty else self.scale
 
     def _round(self, free, edges, kept, fact: Factor, b: np.ndarray) -> Round:
@@ -518,7 +517,7 @@ class Solver(Freeing, Planarity):
         t = self.host.t
         tol = self.tol
         l, h = t.lengths[lab][:2]
-        if lab in self.host.side_labels and lab not in t.gaps or not t.least:
+        if lab in self.host.unsized_sides or not t.least:
             return l - tol, h + tol, l - tol, None
         return max(l - tol, t.least[lab]), h + tol, l - tol, t.least[lab]
 
