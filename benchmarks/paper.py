@@ -2,8 +2,8 @@
 
 For each illustration in ../shared/corpus/illustrations the example is loaded and compiled
 (timed), then grown from its frame for the paper's N iterations (or --iterations), with the
-default cost. An iteration is one proposal, applied or not (Algorithm 3 counts them so: the
-paper's N is not a number of applied steps).
+default cost (or --cost). An iteration is one proposal, applied or not (Algorithm 3 counts
+them so: the paper's N is not a number of applied steps).
 The table shows our figures beside the paper's: compile time against its grammar time,
 total time against its total, hierarchy graphs and rules, output vertices against its output
 primitives (which count its merged rigid units, so they are smaller), the structures besides
@@ -26,6 +26,7 @@ says so.
     .venv/bin/python benchmarks/paper.py --steps 300 castle    # time 300 applied steps
     .venv/bin/python benchmarks/paper.py --paper-extent        # the original settings' extents
     .venv/bin/python benchmarks/paper.py --seeds 0-4           # more seeds than the paper's
+    .venv/bin/python benchmarks/paper.py --cost size           # another cost (ggrun's --cost)
 
 With `--seeds` each illustration runs once per seed, and a last line per illustration says
 in how many drawings every face label and edge class of its example was drawn.
@@ -60,14 +61,15 @@ EXTENT = {"castle": (40, 20), "space-station": (51, 20), "flowers": (51, 30),
 
 
 def measure(name: str, iterations: int | None, steps: int | None = None,
-            paper_extent: bool = False, seed: int | None = None) -> dict:
+            paper_extent: bool = False, seed: int | None = None,
+            cost_spec: str | None = None) -> dict:
     import networkx as nx
     import shapely
 
     from compiler.infer import compile_example
     from grammar_lang.diagnostics import UserError
     from grammar_lang.loader import load_example
-    from runtime.engine.costs import default_cost
+    from runtime.engine.costs import parse_cost
     from runtime.engine.generate import Engine
 
     n, paper_seed, *_ = PAPER[name]
@@ -76,7 +78,8 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
     example = load_example(ILLUSTRATIONS / f"{name}.gg")
     result = compile_example(example)
     t_compile = time.perf_counter() - t0
-    cost = default_cost(result.grammar.header, iterations or n)
+    header = result.grammar.header
+    cost = parse_cost(cost_spec, header.labels, iterations or n, header)
     extent = None
     if paper_extent:
         extent = tuple(40.0 * c for c in EXTENT[name])
@@ -136,6 +139,9 @@ def main(argv=None) -> int:
                     help="stop after this many applied steps (within the iterations)")
     ap.add_argument("--paper-extent", action="store_true",
                     help="fill the original settings' extent, not the example's frame")
+    ap.add_argument("--cost", metavar="NAME[:ARGS]",
+                    help="the Metropolis cost, as ggrun's --cost (default: scene with N = "
+                         "the iterations)")
     ap.add_argument("--seeds", type=_seeds, help="seeds to run, as 0-4 or 1,5,80 "
                     "(default: the paper's seed for each)")
     args = ap.parse_args(argv)
@@ -149,7 +155,8 @@ def main(argv=None) -> int:
         whole = []
         for seed in args.seeds or [PAPER[name][1]]:
             try:
-                r = measure(name, args.iterations, args.steps, args.paper_extent, seed)
+                r = measure(name, args.iterations, args.steps, args.paper_extent, seed,
+                            args.cost)
             except UserError as e:
                 print(f"{name:<14}  does not run: {str(e).splitlines()[0]}")
                 break

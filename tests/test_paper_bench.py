@@ -37,3 +37,11 @@ def test_full_at_is_the_first_iteration_that_holds_95_percent_of_the_most(counts
     reached = [p for p, v in trace if v >= 0.95 * max(counts)]
     assert at == reached[0]
     assert all(v < 0.95 * max(counts) for p, v in trace if p < at)
+
+
+def test_another_cost_is_the_one_ggrun_takes_and_a_bad_one_is_refused(monkeypatch, capsys):
+    monkeypatch.setattr(paper, "ILLUSTRATIONS", ILLUSTRATIONS)
+    assert paper.main(["flowers", "--iterations", "20", "--cost", "none"]) == 0
+    assert [r for r in capsys.readouterr().out.splitlines() if r.startswith("flowers ")]
+    assert paper.main(["flowers", "--iterations", "20", "--cost", "sise"]) == 0
+    assert "does not run: unknown cost 'sise'" in capsys.readouterr().out
