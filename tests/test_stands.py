@@ -88,8 +88,12 @@ def test_a_stand_on_a_gap_between_structures_is_refused_before_any_geometry(cast
 
 def test_no_part_places_closer_to_the_frame_than_it_must_reach(monkeypatch):
     """The space station's module put above its top module: with the refusal off, the
-    proposals the reach test would refuse all fail (outside the frame, mostly), and with it
-    on they are refused before any geometry."""
+    proposals the reach test would refuse nearly all fail (outside the frame, mostly), and
+    with it on they are refused before any geometry. Nearly: the reach is measured from
+    where the old vertices the part hangs from lie, and a later round may move them. Since
+    the panels fill the station's trusses (2026-12-08) an antenna under a module's bottom
+    8 px above the frame's placed once so in 144 flagged proposals, the bottom raised (2 in
+    2,116 over seeds 22, 0 and 1 at 4,000 iterations)."""
     grammar = load_grammar(str(ILLUSTRATIONS / "space-station.gg"), compile_example)
     real = Engine._no_room
     flagged = []
@@ -113,7 +117,7 @@ def test_no_part_places_closer_to_the_frame_than_it_must_reach(monkeypatch):
     eng.apply = apply
     for _ in range(800):
         eng.step()
-    assert len(seen) >= 20 and not any(seen)
+    assert len(seen) >= 20 and sum(seen) <= len(seen) // 50
     monkeypatch.setattr(Engine, "_no_room", real)
     eng = Engine(grammar, seed=22, cost=default_cost(grammar.header, 4000))
     reasons = [eng.step().reason for _ in range(800)]

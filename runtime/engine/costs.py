@@ -7,8 +7,8 @@ proposed change before any geometry is solved, so a proposal the cost refuses co
 Built in (`--cost NAME[:ARG[:ARG]]`):
 - `size[:N]`: grow to about N vertices (default: the number of steps asked for): the cost is
   N − n below N and (n − N)/4 above;
-- `scene[:N]`: `size[:N]` plus the example's proportions of face labels and of bare lines
-  (`SceneCost`);
+- `scene[:N]`: `size[:N]` plus the example's proportions of face labels and of bare lines,
+  ornaments of other lines aside (`SceneCost`, `ornaments`);
 - `density:D`: about D vertices per unit² of the frame's area; without a frame, `size` plus
   D vertices per unit² of the drawing's bounding box;
 - `label:NAME[:F]`: `size` plus edges of label NAME making up a fraction F (default 0.5) of
@@ -142,13 +142,19 @@ class SceneCost:
     castle at its N ended with no keep, roof or window at seed 2 of 0-5 (and seed 4 on the
     code of the day before). Not without a frame: such a run starts from nothing, and its
     first structure may lack a part that later moves add (a house before its door); charged
-    for that, examples/house.gg stayed empty."""
+    for that, examples/house.gg stayed empty.
+
+    In a frame, the lines of an ornament class (`ornaments`: a station's panels on its
+    trusses) are in no group and outside the whole the shares are of (`loose`): as many as
+    the lines they hang on hold."""
 
     size: SizeCost
     groups: tuple[tuple[int, ...], ...]     # per group: its edge labels
     shares: tuple[float, ...]
     absent: float = 0.0         # what an expected edge of a missing group costs (0: as any)
     name: str = "scene"
+    # Edge labels outside every group and outside the whole the shares are of (`ornaments`).
+    loose: tuple[int, ...] = ()
 
     def __post_init__(self):
         # Asked for every move a step screens (ten times a step on the paper's village): a
@@ -156,13 +162,15 @@ class SceneCost:
         # returns a tuple, a group of one label too.
         object.__setattr__(self, "_pickers",
                            tuple((_picker(ks), f) for ks, f in zip(self.groups, self.shares)))
+        object.__setattr__(self, "_loose", _picker(self.loose))
 
     def value(self, s: Stats) -> float:
         return self.size.value(s) + self.proportions(s)
 
     def proportions(self, s: Stats) -> float:
         off = 0.0
-        counts, edges = s.label_count, s.edges
+        counts = s.label_count
+        edges = s.edges - sum(self._loose(counts)) if self.loose else s.edges
         for pick, f in self._pickers:
             # Counts are predicted before a move is matched: a move that cannot match (one
             # that deletes more than the drawing has) may predict fewer than no edges.
@@ -193,28 +201,61 @@ def default_cost(header, steps: int) -> Cost:
     for p in header.primitives:
         for t in p.ring:
             per_label[t >> 1] += p.count / 2
-    total = sum(per_label) or 1.0
+    loose = ornaments(header)
+    total = sum(per_label) - sum(per_label[k] for k in loose) or 1.0
     groups = [g for g in _scene_groups(header) if any(per_label[k] for k in g)]
+    groups = [g for g in groups if not loose.issuperset(g)]
     shares = [sum(per_label[k] for k in g) / total for g in groups]
     return SceneCost(size, tuple(groups), tuple(shares),
-                     ABSENT if header.frame is not None else 0.0)
+                     ABSENT if header.frame is not None else 0.0, loose=tuple(sorted(loose)))
+
+
+def ornaments(header) -> frozenset[int]:
+    """In a frame, the edge labels of each edge class whose lines meet only other lines in
+    the open space, never a structure's outline nor the frame: a space station's solar
+    panels on its trusses, a flower's blossoms on its stems. Such a class is an ornament of
+    the lines it hangs on, as many as they hold, so the scene cost holds it to no share of
+    the drawing, and leaves its edges out of the whole the other shares are of: held there,
+    the paper's station's panels were held at their share of a drawing whose modules the
+    frame has no room for, and its trusses stayed bare. Without a frame, none: a tree is all
+    lines in the open, and its trunk and twigs keep their proportions."""
+    if header.frame is None:
+        return frozenset()
+    bare = set(_bare_labels(header, _space(header)))
+    out = set()
+    for cls in sorted({header.labels[k].cls for k in bare}):
+        ks = {k for k in bare if header.labels[k].cls == cls}
+        if all(t >> 1 in bare for p in header.primitives if any(t >> 1 in ks for t in p.ring)
+               for t in p.ring):
+            out |= ks
+    return frozenset(out)
+
+
+def _space(header) -> set:
+    """The faces of the open space: the exterior, or in a frame the faces beside its corner."""
+    labels = header.labels
+    if header.frame is None:
+        return {header.exterior}
+    corner = header.primitives[header.frame.corners[0].prim]
+    return {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}
+
+
+def _bare_labels(header, space: set) -> list[int]:
+    """The edge labels with the open space on both sides, border classes aside."""
+    border = border_labels(header.labels, header.classes)
+    return [k for k, l in enumerate(header.labels)
+            if l.left in space and l.right in space and k not in border]
 
 
 def _scene_groups(header) -> list[tuple[int, ...]]:
     """The edge labels beside each face label but the space's, then each edge class's bare
     lines in the space (border classes aside: the frame is placed once)."""
     labels = header.labels
-    if header.frame is None:
-        space = {header.exterior}
-    else:
-        corner = header.primitives[header.frame.corners[0].prim]
-        space = {f for t in corner.ring for f in (labels[t >> 1].left, labels[t >> 1].right)}
+    space = _space(header)
     faces = sorted({f for l in labels for f in (l.left, l.right)} - space)
     groups = [tuple(k for k, l in enumerate(labels) if face in (l.left, l.right))
               for face in faces]
-    border = border_labels(labels, header.classes)
-    bare = [k for k, l in enumerate(labels)
-            if l.left in space and l.right in space and k not in border]
+    bare = _bare_labels(header, space)
     for cls in sorted({labels[k].cls for k in bare}):
         groups.append(tuple(k for k in bare if labels[k].cls == cls))
     return groups
