@@ -34,7 +34,6 @@ class Scene:
     seed: int
     about: str
     extent: str | None = None     # `ggrun --extent`; None: the example's own frame
-    cost: str | None = None       # `ggrun --cost`; None: the default (scene)
 
 
 SCENES = (
@@ -56,12 +55,9 @@ SCENES = (
     Scene("flowers", ILLUSTRATIONS / "flowers.gg", 2000, 42, "the paper's Fig. 9f flowers"),
     Scene("space-station", ILLUSTRATIONS / "space-station.gg", 3700, 22,
           "the paper's Fig. 9b space station"),
-    Scene("space-station-size", ILLUSTRATIONS / "space-station.gg", 3700, 22,
-          "the paper's Fig. 9b space station at the original settings' extent, 2,040 × 800, "
-          "grown with `--cost size`: without the scene cost's proportions its trusses carry "
-          "panels across the frame (the default holds the panels to their share of a drawing "
-          "whose modules the frame has no room for: [scenes.md](scenes.md))", "2040x800",
-          "size"),
+    Scene("space-station-paper-extent", ILLUSTRATIONS / "space-station.gg", 3700, 22,
+          "the paper's Fig. 9b space station at the original settings' extent, 2,040 × 800 "
+          "(51 × 20 cells of 40 px)", "2040x800"),
     Scene("village", ILLUSTRATIONS / "village.gg", 4200, 65, "the paper's Fig. 9g village"),
     Scene("village-paper-extent", ILLUSTRATIONS / "village.gg", 4200, 65,
           "the paper's Fig. 9g village at the original settings' extent, 2,720 × 1,600 (68 × 40 "
@@ -92,9 +88,8 @@ def draw_scene(s: Scene, out: Path, quick: bool, page_dir: Path) -> list[str]:
     for n in ((40, 80) if quick else (s.iterations // 4, s.iterations)):
         png = out / f"{s.name}-{n}.png"
         extent = ["--extent", s.extent] if s.extent else []
-        cost = ["--cost", s.cost] if s.cost else []
         res = tool(["report.ggrun", str(s.source), "--iterations", str(n), "--seed",
-                    str(s.seed), "--out", str(png), "--width", "800", *extent, *cost])
+                    str(s.seed), "--out", str(png), "--width", "800", *extent])
         if res.returncode != 0:
             # An error is not a result to show: the page keeps its last good version.
             raise RuntimeError(f"{s.name}, {n} iterations: {summary(res)}")
