@@ -196,3 +196,29 @@ def test_tied_pins_with_rounding_in_the_projection_stay_on_the_system():
         if y is not None:
             assert np.abs(fact.A.dot(y) - b).max() < 1e-6
             assert y[8] == pytest.approx(3.0) and y[10] == pytest.approx(3.0 + apart)
+
+
+def _general(fact, x, n, pins):
+    """project_pinned's general path (a k×k solve), for comparison with its one-pin path."""
+    idx = np.array(list(pins))
+    r = np.array(list(pins.values())) - x[n + idx]
+    cols = fact.P_len[:, idx]
+    d = cols.dot(np.linalg.solve(cols[n + idx], r))
+    return x + d
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.sampled_from([DIRS, HEX]), st.integers(0, 5), st.floats(0.5, 80.0),
+       st.integers(0, 2**32 - 1))
+def test_one_pin_is_projected_exactly_as_the_general_solve_would(dirs, e, value, seed):
+    """The one-pin path (one division) gives the general path's point to the last bit, so
+    that drawings do not change with it; and that point lies on the system with its pin."""
+    k = len(dirs)
+    e %= k
+    fact, b = _polygon(dirs)
+    rng = np.random.default_rng(seed)
+    x = _project(fact, b, np.concatenate([rng.normal(0, 10, 2 * k), rng.uniform(1, 60, k)]))
+    y = fact.project_pinned(x, 2 * k, {e: value})
+    assert y is not None
+    assert np.array_equal(y, _general(fact, x, 2 * k, {e: value}))
+    assert np.abs(fact.A.dot(y) - b).max() < 1e-6 and y[2 * k + e] == pytest.approx(value)
