@@ -5,7 +5,7 @@ import functools
 from pathlib import Path
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from compiler.infer import compile_example
@@ -127,6 +127,8 @@ def test_the_ornaments_are_the_stations_panels_and_the_flowers_blossoms():
             assert classes(name) == [], name
 
 
+# No deadline: an example's first draw compiles it (a second or so), later ones reuse it.
+@settings(deadline=None)
 @given(st.sampled_from(sorted(_HEADERS)))
 def test_an_ornament_meets_only_lines_in_the_open_space_and_is_outside_every_share(name):
     h = _header(name)

@@ -203,8 +203,8 @@ def default_cost(header, steps: int) -> Cost:
             per_label[t >> 1] += p.count / 2
     loose = ornaments(header)
     total = sum(per_label) - sum(per_label[k] for k in loose) or 1.0
-    groups = [g for g in _scene_groups(header) if any(per_label[k] for k in g)]
-    groups = [g for g in groups if not loose.issuperset(g)]
+    groups = [g for g in _scene_groups(header)
+              if any(per_label[k] for k in g) and not loose.issuperset(g)]
     shares = [sum(per_label[k] for k in g) / total for g in groups]
     return SceneCost(size, tuple(groups), tuple(shares),
                      ABSENT if header.frame is not None else 0.0, loose=tuple(sorted(loose)))

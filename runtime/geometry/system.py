@@ -88,10 +88,10 @@ class Factor:
             # solve is one division, the same number LAPACK's would give, without its checks.
             (e, value), = pins.items()
             col = self.P_len[:, e]
-            g = float(col[n + e])
+            g, r1 = float(col[n + e]), value - float(x[n + e])
             if abs(g) > tol:
-                d = col * ((value - float(x[n + e])) / g)
-                if abs(float(d[n + e]) - (value - float(x[n + e]))) <= tol \
+                d = col * (r1 / g)
+                if abs(float(d[n + e]) - r1) <= tol \
                         and float(np.abs(self.A.dot(d)).max(initial=0.0)) <= tol:
                     return x + d
         idx = np.fromiter(pins, dtype=int, count=len(pins))
