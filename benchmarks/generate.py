@@ -3,7 +3,8 @@
 For each example and size the grammar is compiled (not timed) in a fresh process, grown with
 the `size` cost until the drawing holds that many vertices, and then measured over a window of
 steps at that size, so the rows show whether the per-step time stays flat as the drawing
-grows. Beside the time per applied step it prints the time per proposal (applied or not), the
+grows. Beside the applied steps per second it prints the iterations per second (proposals,
+applied or not: the paper's steps, which its Table 1 counts so), the time per proposal, the
 solver's samples per applied step and the drawing's bounding-box area per vertex (in square
 units): a grown drawing packs denser as it gets larger, and then more of its proposals fail
 their crossing tests: a time per proposal that grows little while the samples per step grow
@@ -80,6 +81,7 @@ def measure(path: str, size: int, window: int, seed: int, profile: bool = False,
             "grow_steps": grow.applied, "grow_s": grown,
             "applied": s.applied, "proposals": s.proposals,
             "steps_per_s": s.applied / dt if dt else 0.0,
+            "iterations_per_s": s.proposals / dt if dt else 0.0,
             "ms_per_step": 1000 * dt / max(s.applied, 1),
             "us_per_proposal": 1e6 * dt / max(s.proposals, 1),
             "samples_per_step": samples / max(s.applied, 1), "stop": s.stop,
@@ -115,17 +117,19 @@ def main(argv=None) -> int:
                                  profile=bool(args.profile), sort=args.sort)))
         return 0
     print(f"{'example':<20}{'target':>7}{'vertices':>9}{'grown in':>9}{'applied':>8}"
-          f"{'proposals':>10}{'steps/s':>9}{'ms/step':>9}{'µs/prop.':>9}{'samp./step':>11}"
+          f"{'proposals':>10}{'steps/s':>9}{'iter./s':>9}{'ms/step':>9}{'µs/prop.':>9}{'samp./step':>11}"
           f"{'area/v':>7}{'MiB base':>9}{'MiB peak':>9}")
     for p in paths:
         for size in sizes:
             r = in_fresh_process(p, size, args.window, args.seed)
             print(f"{r['example']:<20}{r['target']:>7}{r['vertices']:>9}{r['grow_s']:>8.1f}s"
-                  f"{r['applied']:>8}{r['proposals']:>10}{r['steps_per_s']:>9.0f}"
+                  f"{r['applied']:>8}{r['proposals']:>10}{r['steps_per_s']:>9.0f}{r['iterations_per_s']:>9.0f}"
                   f"{r['ms_per_step']:>9.2f}{r['us_per_proposal']:>9.0f}"
                   f"{r['samples_per_step']:>11.2f}{r['area_per_vertex']:>7.2f}"
                   f"{r['base_mib']:>9.0f}{r['peak_mib']:>9.0f}"
                   + ("" if r["stop"].startswith("reached") else f"  ({r['stop']})"), flush=True)
+    print("goal: 2,000 steps/s on these grammars; the paper's figures count iterations (its "
+          "castle: 4,000 in 9.5 s, about 450/s)")
     return 0
 
 

@@ -13,7 +13,10 @@ frame, over the frame's area. Units count the output as the paper counts its pri
 a rigid part (vertices joined by edges of fixed length) is one unit, as are the other
 vertices, the frame aside. `full at` is the first iteration (counted in fifties) at which
 the drawing held 95 % of the most vertices it had during the run: the iterations after it
-change the drawing but no longer grow it.
+change the drawing but no longer grow it. `most×` and `least×` say how far the drawing keeps
+the example's proportions: per group of the scene cost (the edges beside each face label, and
+each class's bare lines; `costs.SceneCost`), its edges over what its share of the example
+asks for, the largest and the smallest (1: as in the example).
 
 By default each drawing fills the example's own frame (1540 × 780 px). `--paper-extent`
 fills the extent of the original settings instead (the illustrations' README: castle
@@ -69,7 +72,7 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
     from compiler.infer import compile_example
     from grammar_lang.diagnostics import UserError
     from grammar_lang.loader import load_example
-    from runtime.engine.costs import parse_cost
+    from runtime.engine.costs import default_cost, parse_cost
     from runtime.engine.generate import Engine
 
     n, paper_seed, *_ = PAPER[name]
@@ -113,6 +116,8 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
     wanted = set(example.face_labels) - {example.exterior}
     drawn = {host.t.label_class[host.t.label[host.prim[v]][i]] for v, i, _, _ in host.edges()}
     classes = {lab.cls for lab in result.grammar.header.labels}
+    # The example's proportions (the default cost's groups, whatever cost the run had).
+    ratios = default_cost(header, n).ratios(engine.stats())
     return {"name": name, "seed": seed, "iterations": summary.proposals, "steps": summary.applied,
             "compile": t_compile, "total": t_total,
             "graphs": result.report.hierarchy_graphs, "rules": len(result.grammar.rules),
@@ -121,6 +126,7 @@ def measure(name: str, iterations: int | None, steps: int | None = None,
             "labels": len(faces & wanted) / max(1, len(wanted)), "covered": covered,
             "classes": len(drawn & classes) / max(1, len(classes)),
             "full_at": _full_at(trace + [(summary.proposals, len(host))]),
+            "most": max(ratios), "least": min(ratios),
             "stop": summary.stop}
 
 
@@ -149,7 +155,8 @@ def main(argv=None) -> int:
           f"Python {platform.python_version()}")
     print(f"{'example':<14}{'seed':>5}{'iter.':>6}{'steps':>6}{'compile s':>10}{'(paper)':>8}{'total s':>9}{'(paper)':>8}"
           f"{'graphs':>7}{'(paper)':>8}{'rules':>6}{'(paper)':>8}{'vertices':>9}{'units':>6}"
-          f"{'(paper)':>8}{'parts':>6}{'labels':>7}{'classes':>8}{'covered':>8}{'full at':>8}{'frame':>11}")
+          f"{'(paper)':>8}{'parts':>6}{'labels':>7}{'classes':>8}{'covered':>8}{'most×':>6}{'least×':>7}"
+          f"{'full at':>8}{'frame':>11}")
     from grammar_lang.diagnostics import UserError
     for name in args.names:
         whole = []
@@ -172,7 +179,8 @@ def _row(r: dict) -> str:
     return (f"{r['name']:<14}{r['seed']:>5}{r['iterations']:>6}{r['steps']:>6}{r['compile']:>10.2f}"
             f"{gram:>8}{r['total']:>9.1f}{total:>8}{r['graphs']:>7}{graphs:>8}{r['rules']:>6}"
             f"{rules:>8}{r['vertices']:>9}{r['units']:>6}{out:>8}{r['components']:>6}"
-            f"{r['labels']:>7.0%}{r['classes']:>8.0%}{r['covered']:>8.1%}{r['full_at']:>8}"
+            f"{r['labels']:>7.0%}{r['classes']:>8.0%}{r['covered']:>8.1%}{r['most']:>6.2f}"
+            f"{r['least']:>7.2f}{r['full_at']:>8}"
             f"{'%g×%g' % r['extent']:>11}" + (f"  ({r['stop']})" if r["stop"] else ""))
 
 

@@ -178,3 +178,28 @@ def test_the_stations_trusses_fill_with_panels_and_keep_every_part():
     drawn = {h.t.label_class[h.t.label[h.prim[v]][i]] for v, i, _, _ in h.edges()}
     assert drawn == {l.cls for l in header.labels}
     assert check_drawing(ex, h.to_drawing()) == []
+
+
+# --- ratios: how far a drawing keeps its example's proportions (benchmarks/paper.py) -------
+
+@settings(deadline=None)
+@given(st.lists(st.integers(0, 300), min_size=3, max_size=3),
+       st.floats(0.05, 0.9), st.booleans())
+def test_a_ratio_is_a_groups_edges_over_what_its_share_asks_for(counts, share, loose):
+    cost = SceneCost(SizeCost(0), ((0,), (1,)), (share, 1.0 - share), loose=(2,) if loose else ())
+    edges = sum(counts)
+    whole = edges - counts[2] if loose else edges
+    ratios = cost.ratios(Stats(0, edges, tuple(counts), 0.0))
+    if whole == 0:
+        assert ratios == (1.0, 1.0)
+    else:
+        assert ratios[0] * share * whole == pytest.approx(counts[0])
+        assert ratios[1] * (1.0 - share) * whole == pytest.approx(counts[1])
+
+
+@pytest.mark.parametrize("name", ["space-station", "village"])
+def test_a_scene_that_starts_from_its_example_starts_in_its_proportions(name):
+    grammar = compile_example(load_example(_HEADERS[f"illustration:{name}"])).grammar
+    cost = default_cost(grammar.header, 100)
+    ratios = cost.ratios(Engine(grammar, seed=0).stats())
+    assert ratios == pytest.approx((1.0,) * len(cost.groups))

@@ -4,6 +4,8 @@ per applied step (counted here independently, solver by solver) and the box area
 
 import sys
 
+import pytest
+
 from conftest import ROOT
 
 from runtime.engine import generate as engine_module
@@ -34,3 +36,5 @@ def test_the_window_counts_every_sample_of_its_solvers(monkeypatch):
     assert window and sum(s.samples for s in window) > 0
     assert r["samples_per_step"] * r["applied"] == sum(s.samples for s in window)
     assert 0 < r["area_per_vertex"] < 100
+    # Iterations are proposals, applied or not, over the same window's time.
+    assert r["iterations_per_s"] * r["applied"] == pytest.approx(r["steps_per_s"] * r["proposals"])

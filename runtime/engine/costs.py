@@ -170,7 +170,7 @@ class SceneCost:
     def proportions(self, s: Stats) -> float:
         off = 0.0
         counts = s.label_count
-        edges = s.edges - sum(self._loose(counts)) if self.loose else s.edges
+        edges = self._whole(s)
         for pick, f in self._pickers:
             # Counts are predicted before a move is matched: a move that cannot match (one
             # that deletes more than the drawing has) may predict fewer than no edges.
@@ -181,6 +181,18 @@ class SceneCost:
             else:
                 off += max(0.0, abs(n - expected) - math.sqrt(expected))
         return off
+
+    def ratios(self, s: Stats) -> tuple[float, ...]:
+        """Per group, its edges over the edges its share of the drawing asks for (1: the
+        example's proportion): how far a drawing keeps its example's parts in proportion
+        (benchmarks/paper.py)."""
+        edges = self._whole(s)
+        return tuple(sum(pick(s.label_count)) / (f * edges) if edges > 0 else 1.0
+                     for pick, f in self._pickers)
+
+    def _whole(self, s: Stats) -> int:
+        """The edges the shares are of: all but the ornaments'."""
+        return s.edges - sum(self._loose(s.label_count)) if self.loose else s.edges
 
 
 def _picker(ks: tuple[int, ...]) -> Callable[[tuple[int, ...]], tuple[int, ...]]:
