@@ -144,7 +144,7 @@ def output_paths(out: str, count: int) -> list[str]:
 
 
 def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | None:
-    """`W×H` (or `WxH`): positive, finite, and room for the longest rigid edge."""
+    """`W×H` (or `WxH`): positive, finite, and room for every rigid part (`rigid_box`)."""
     if text is None:
         return None
     hint = "give the frame's width and height in drawing units, for example --extent 1540x780"
@@ -158,17 +158,21 @@ def parse_extent(text: str | None, grammar: Grammar) -> tuple[float, float] | No
         raise error(f"--extent {text}: not W×H", None, hint) from None
     if not (0 < w < 1e9 and 0 < h < 1e9):
         raise error(f"--extent {text}: width and height must be positive and finite", None, hint)
-    rigid = max((l.length or 0.0 for l in grammar.header.labels
-                 if any(c.name == l.cls and (c.rigid or c.fixed) for c in grammar.header.classes)),
-                default=0.0)
     frame = grammar.header.frame
     fw, fh = frame.size
     if not frame.axis_aligned and abs(w / h - fw / fh) > 1e-9 * (fw / fh):
         raise error(f"--extent {text} would change the angles of this frame's slanted sides",
                     None, f"keep its proportions: --extent {w:g}x{w * fh / fw:g}")
-    if min(w, h) < rigid:
-        raise error(f"--extent {text} is smaller than the example's largest rigid part "
-                    f"({rigid:g} units long)", None, "give a larger extent")
+    from .geometry.stands import rigid_box
+    from .geometry.tables import Tables
+    t = Tables.build(grammar.header)
+    bw, bh = rigid_box(t, (side for rule in grammar.rules for side in (rule.lhs, rule.rhs)))
+    # Laid out from rounded lengths and directions, a part's box is a few 1e-7 off.
+    tol = 1e-6 * t.unit
+    if bw > w + tol or bh > h + tol:
+        raise error(f"--extent {text} cannot hold the example's largest rigid parts "
+                    f"({bw:.4g} units wide, {bh:.4g} high; a rigid part keeps its shape)",
+                    None, f"give an extent of at least {bw:.4g}x{bh:.4g}")
     return w, h
 
 

@@ -270,6 +270,36 @@ def test_bad_extents_are_user_errors(castle, extent, message):
         parse_extent(extent, castle[1].grammar)
 
 
+def test_an_extent_must_hold_every_rigid_part(scene):
+    """A rigid part keeps its shape, so an extent narrower or lower than its box is refused
+    (the flowers' blossoms, 160 × 140 px, stalled a run at 100 × 100 with no word of why);
+    the example's own frame holds every part, and so does any extent as large as the box."""
+    from runtime.geometry.stands import rigid_box
+    from runtime.geometry.tables import Tables
+    from runtime.run_cmd import parse_extent
+    grammar = scene[1].grammar
+    bw, bh = rigid_box(Tables.build(grammar.header),
+                       [s for r in grammar.rules for s in (r.lhs, r.rhs)])
+    fw, fh = grammar.header.frame.size
+    assert bw <= fw and bh <= fh
+    assert parse_extent(f"{fw:g}x{fh:g}", grammar) == (fw, fh)
+    if not grammar.header.frame.axis_aligned:
+        return
+    assert parse_extent(f"{max(bw, 1):.6f}x{max(bh, 1):.6f}", grammar)
+    for w, h in ((0.9 * bw, fh), (fw, 0.9 * bh)):
+        if w and h:
+            with pytest.raises(UserError, match="cannot hold the example's largest rigid"):
+                parse_extent(f"{w:g}x{h:g}", grammar)
+
+
+def test_the_flowers_blossoms_do_not_fit_a_small_extent():
+    from runtime.run_cmd import parse_extent
+    grammar = compile_example(load_example(ILLUSTRATIONS / "flowers.gg")).grammar
+    with pytest.raises(UserError, match=r"160 units wide, 140 high"):
+        parse_extent("100x100", grammar)
+    assert parse_extent("160x140", grammar) == (160.0, 140.0)
+
+
 def test_an_extent_stretches_the_frame(castle):
     eng = Engine(castle[1].grammar, seed=4, extent=(2400.0, 900.0))
     assert eng.host.frame.size == (2400.0, 900.0)
