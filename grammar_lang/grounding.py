@@ -53,8 +53,9 @@ def close_ground(source: ExampleSource) -> ExampleSource:
 
 
 def ground_note(source: ExampleSource) -> Diagnostic | None:
-    """A note when the example's border lines end in the air and cannot be closed into a
-    frame (they are not one level line): generation then has no ground to stand things on."""
+    """A warning when the example's border lines end in the air and cannot be closed into a
+    frame (they are not one level line): generation then has no ground to stand things on,
+    and the run goes on unframed (ggrun says so as well as ggc)."""
     ground, _ = _split(source)
     if not ground or _level(ground):
         return None
@@ -62,7 +63,7 @@ def ground_note(source: ExampleSource) -> Diagnostic | None:
                       "cannot be closed into a frame: the example is unframed",
                       ground[0].span, "draw the frame around the example: "
                       "`border rect (x0, y0) (x1, y1) class C`, or make the ground level",
-                      severity="note", source=source.text)
+                      severity="warning", source=source.text)
 
 
 def _split(source: ExampleSource):

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Callable
 
 from grammar_lang.blas import pin_blas_threads
 from grammar_lang.cli_support import EXIT_FAILED, EXIT_INTERRUPTED
-from grammar_lang.diagnostics import Span, error
+from grammar_lang.diagnostics import Diagnostic, Span, error
 
 from . import interrupt
 
@@ -102,7 +102,10 @@ class Job:
 CompileExample = Callable[[object], object]
 
 
-def load_grammar(path: str, compile_example: CompileExample | None = None) -> Grammar:
+def load_grammar(path: str, compile_example: CompileExample | None = None,
+                 warn: Callable[[Diagnostic], None] | None = None) -> Grammar:
+    """The grammar of a rule file, or of an example compiled here; `warn` is told of the
+    example's warnings (a border that cannot be closed into a frame), as `ggc` prints them."""
     p = Path(path)
     suffix = p.suffix.lower()
     if suffix == ".ggr":
@@ -114,7 +117,11 @@ def load_grammar(path: str, compile_example: CompileExample | None = None) -> Gr
                         Span(str(p)), f"compile it first ('ggc compile {p.name}'), or run "
                                       "the 'ggrun' command, which compiles examples")
         from grammar_lang.loader import load_example
-        result = compile_example(load_example(p))
+        example = load_example(p)
+        for note in example.notes:
+            if warn is not None and note.severity == "warning":
+                warn(note)
+        result = compile_example(example)
         return getattr(result, "grammar", result)
     raise error(f"don't know how to read '{p.name}'", Span(str(p)),
                 "give a grammar (.ggr) or an example (.gg, .svg)")
@@ -241,7 +248,8 @@ def write_drawing(drawing, grammar: Grammar, path: str,
 
 def run_command(args: argparse.Namespace) -> int:
     out = _output_path(args)
-    grammar = load_grammar(args.file, getattr(args, "compile_example", None))
+    grammar = load_grammar(args.file, getattr(args, "compile_example", None),
+                           None if args.quiet else lambda d: sys.stderr.write(d.render() + "\n"))
     _check_run_options(args, grammar)
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)

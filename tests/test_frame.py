@@ -157,7 +157,7 @@ def test_framed_examples_grow_standing_on_their_ground(name, seed):
     assert failures == [], "\n".join(f.render() for f in failures[:3])
 
 
-def test_a_ground_that_is_not_level_is_left_unframed(tmp_path):
+def test_a_ground_that_is_not_level_is_left_unframed(tmp_path, capsys):
     gg = tmp_path / "steps.gg"
     gg.write_text('example "steps"\nimport "ground"\n'
                   "polyline (0, 0) (100, 0) (100, 20) (200, 20) class ground\n"
@@ -165,7 +165,14 @@ def test_a_ground_that_is_not_level_is_left_unframed(tmp_path):
     ex = load_example(gg)
     assert find_frame(ex) is None
     note = next(n for n in ex.notes if "ends in the air" in n.message)
-    assert note.severity == "note" and "steps.gg:3:1" in note.render()
+    assert note.severity == "warning" and "steps.gg:3:1" in note.render()
+    # ggrun, which compiles the example itself, says it too, before its summary.
+    out = tmp_path / "steps.svg"
+    capsys.readouterr()
+    assert ggrun([str(gg), "--steps", "3", "--out", str(out)]) == 0
+    assert "steps.gg:3:1: warning: this border line ends in the air" in capsys.readouterr().err
+    assert ggrun([str(gg), "--steps", "3", "--out", str(out), "--quiet"]) == 0
+    assert capsys.readouterr().err == ""
     for name in NAMES:          # a frame drawn in pieces (the SVGs) is not an open ground
         assert not any("ends in the air" in n.message
                        for n in load_example(ILLUSTRATIONS / f"{name}.gg").notes)
