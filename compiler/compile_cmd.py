@@ -11,6 +11,7 @@ from rich.table import Table
 
 from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import atomic_write, read_text
+from grammar_lang.reach import connected_warning
 
 from .infer import CompileResult, Report, compile_example
 
@@ -70,6 +71,9 @@ def run_compile(args) -> int:
     else:
         result = compile_example(example)
     write_ggr(target, result.grammar, force=args.force)
+    gap = connected_warning(result.grammar)
+    if gap is not None:
+        err.print(gap.render(), markup=False)
     if args.report:
         data = {"format": REPORT_FORMAT, **result.report.as_dict()}
         data["output"] = str(target)

@@ -248,8 +248,11 @@ def write_drawing(drawing, grammar: Grammar, path: str,
 
 def run_command(args: argparse.Namespace) -> int:
     out = _output_path(args)
-    grammar = load_grammar(args.file, getattr(args, "compile_example", None),
-                           None if args.quiet else lambda d: sys.stderr.write(d.render() + "\n"))
+    from grammar_lang.reach import connected_warning
+    warn = None if args.quiet else lambda d: sys.stderr.write(d.render() + "\n")
+    grammar = load_grammar(args.file, getattr(args, "compile_example", None), warn)
+    if warn is not None and (gap := connected_warning(grammar)) is not None:
+        warn(gap)
     _check_run_options(args, grammar)
     both = None if args.direction is None else args.direction == "both"
     extent = parse_extent(args.extent, grammar)
