@@ -68,8 +68,13 @@ POINTS = InputLimit("points", "GG_MAX_POINTS", 10_000, "points")
 
 # Vertices a generated drawing may reach: a run stops there, as memory grows with the drawing.
 DRAWING = InputLimit("drawing", "GG_MAX_DRAWING", 500_000, "vertices in the drawing")
+# Cells of the runtime's spatial grid along a frame's sides (`ggrun --extent`, or a frame drawn
+# that large): a side is filed in every cell it crosses, and again each time a structure
+# stood on it splits it. The paper's scenes at their extents span a few hundred; at 1,200,000
+# (the castle at 10,000,000 × 5,000,000) twenty steps took 76 s and 736 MB.
+EXTENT = InputLimit("extent", "GG_MAX_EXTENT", 40_000, "grid cells along the frame's sides")
 
-ALL = (BYTES, TOKENS, ELEMENTS, POINTS, DRAWING)
+ALL = (BYTES, TOKENS, ELEMENTS, POINTS, DRAWING, EXTENT)
 
 _TOKEN = re.compile(r"[^\s(){}\[\],;:=]+|[(){}\[\],;:=]")
 

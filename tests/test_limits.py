@@ -13,7 +13,7 @@ import pytest
 from compiler.canon import split
 from compiler.cli import main as ggc
 from compiler.infer import affordable
-from conftest import CORPUS, ROOT
+from conftest import CORPUS, ILLUSTRATIONS, ROOT
 from grammar_lang import limits
 from grammar_lang.diagnostics import UserError
 from grammar_lang.fileio import read_text
@@ -105,3 +105,18 @@ def test_example_starters_are_bounded_by_work():
     assert [len(g.verts) for g in affordable(parts, 4 + 9)] == [2, 3]
     assert [len(g.verts) for g in affordable(parts, 4 + 9 + 48)] == [2, 3]
     assert [len(g.verts) for g in affordable(parts, 4 + 9 + 49)] == [2, 3, 7]
+
+
+def test_a_frame_over_the_extent_limit_is_refused_before_it_is_placed(monkeypatch, tmp_path):
+    """A side is filed in every grid cell it crosses: a frame of 10,000,000 px took 76 s and
+    736 MB for twenty steps. The limit counts those cells and names its variable; the shipped
+    scenes, at their own extents and at the paper's, are far under it."""
+    out = str(tmp_path / "c.svg")
+    castle = str(ILLUSTRATIONS / "castle.gg")
+    code, err = run(ggrun, [castle, "--extent", "10000000x5000000", "--steps", "2", "--out", out])
+    assert code == 2 and "over the extent limit" in err and "set GG_MAX_EXTENT=N" in err
+    assert "10,000,000 × 5,000,000 frame" in err
+    assert run(ggrun, [castle, "--extent", "2720x1600", "--steps", "2", "--out", out])[0] == 0
+    monkeypatch.setenv("GG_MAX_EXTENT", "100")
+    code, err = run(ggrun, [str(EXAMPLES / "castle-scene.gg"), "--steps", "2", "--out", out])
+    assert code == 2 and "over the extent limit" in err

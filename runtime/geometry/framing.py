@@ -9,6 +9,9 @@ around the corners.
 
 from __future__ import annotations
 
+import math
+
+from grammar_lang import limits
 from grammar_lang.diagnostics import Span, UserError, error
 from grammar_lang.fileio import read_text
 from grammar_lang.frame import (Frame, bare_sides, border_labels, border_primitives,
@@ -42,6 +45,7 @@ def place_frame(host: HostView, frame: Frame, rng=None) -> None:
         raise error(crooked_text(frame, bent), None,
                     "draw the frame's sides along their edges' directions, or compile the "
                     "example again")
+    _check_size(host, frame)
     ids = []
     for c in frame.corners:
         v = host.new_id()
@@ -54,6 +58,18 @@ def place_frame(host: HostView, frame: Frame, rng=None) -> None:
             host.glue((ids[k], i), (ids[(k + 1) % n], j))
     else:
         _place_start(host, frame, ids, rng)
+
+
+def _check_size(host: HostView, frame: Frame) -> None:
+    """Refuse a frame whose sides cross more grid cells than the extent limit allows, before
+    anything is filed (limits.EXTENT)."""
+    cs, seg = frame.corners, host.grid.seg
+    n = len(cs)
+    cells = sum(abs(cs[(k + 1) % n].x - cs[k].x) + abs(cs[(k + 1) % n].y - cs[k].y)
+                for k in range(n)) / seg
+    w, h = frame.size
+    limits.EXTENT.check(math.ceil(cells), None, what=f"grid cells of {seg:g} units along the "
+                                                     f"sides of a {w:,.10g} × {h:,.10g} frame")
 
 
 def _mark(host: HostView, frame: Frame, ids: list[int]) -> None:
