@@ -118,8 +118,8 @@ def load_grammar(path: str, compile_example: CompileExample | None = None,
                                       "the 'ggrun' command, which compiles examples")
         from grammar_lang.loader import load_example
         example = load_example(p)
-        for note in example.notes:
-            if warn is not None and note.severity == "warning":
+        for note in example.notes if warn is not None else ():
+            if note.severity == "warning":
                 warn(note)
         result = compile_example(example)
         return getattr(result, "grammar", result)

@@ -25,8 +25,8 @@ refuse placed.
 
 A rigid part (vertices joined by edges of fixed length) keeps its exact shape wherever it is
 drawn, so a frame narrower or lower than its box cannot hold it at all (`rigid_box`, which
-`ggrun --extent` checks: a flower's blossom is 120 × 100 px, and at 100 × 100 the run stalled
-with no word of why).
+`ggrun --extent` checks: the paper's flowers' largest blossoms take 160 × 140 px, and at
+100 × 100 a run stalled with no word of why).
 """
 
 from __future__ import annotations
