@@ -32,7 +32,7 @@ from ..geometry.landing import outer_label, sectors, spot
 from ..geometry.rejections import Rejection
 from ..geometry.solver import I_ROUNDS, J_SAMPLES, Solver, SystemCache
 from ..geometry.spatial import Point
-from ..geometry.stands import joined, least_reach, narrowest
+from ..geometry.stands import joined, least_reach, narrowest, rigid_box
 from ..geometry.tables import Tables
 from .costs import Cost, NoCost, Stats, metropolis_accepts
 from .host import Host
@@ -126,9 +126,23 @@ class Engine:
         self._outside: set[int] = set()             # moves that failed outside the frame
         self._reach: dict[int, list | None] = {}    # move → its least reach (_no_room)
         self.tables = Tables.build(grammar.header)
+        if extent and frame is not None:
+            self._check_extent(*extent)
         self._corners = sectors(self.tables)
         self.systems = SystemCache()       # factorisations by system shape, across steps
         self.reset(seed)
+
+    def _check_extent(self, w: float, h: float) -> None:
+        """Refuse an extent narrower or lower than a rigid part of the grammar's rule sides
+        (stands.rigid_box): the part keeps its shape, so no drawing of that size holds it."""
+        bw, bh = rigid_box(self.tables, (side for rule in self.grammar.rules
+                                         for side in (rule.lhs, rule.rhs)))
+        # Laid out from rounded lengths and directions, a part's box is a few 1e-7 off.
+        tol = 1e-6 * self.tables.unit
+        if bw > w + tol or bh > h + tol:
+            raise error(f"a frame of {w:g} × {h:g} cannot hold the example's largest rigid "
+                        f"parts ({bw:.4g} units wide, {bh:.4g} high; a rigid part keeps its "
+                        "shape)", None, f"give an --extent of at least {bw:.4g}x{bh:.4g}")
 
     def reset(self, seed: int) -> None:
         self.seed = seed
