@@ -357,3 +357,19 @@ def test_random_sessions_never_crash_and_undo_reaches_the_start(data):
     if n:
         execute(s, f"redo {n}")
     assert host.to_drawing() == end and len(s.engine.history) == n
+
+
+def test_loading_an_example_shows_its_warnings_as_ggrun_does(tmp_path):
+    """An example whose border ends in the air runs unframed, and one of pieces under
+    `connected` draws one piece: the REPL says so when it loads them, to stderr."""
+    open_border = tmp_path / "open.gg"
+    open_border.write_text('example "open"\nface a #cc8\nclass frame { border }\n'
+                           "polyline (0,0) (400,0) (400,200) (0,200) class frame\n"
+                           "polygon a rect (100,0) (200,80)\n")
+    pieces = tmp_path / "pieces.gg"
+    pieces.write_text('example "pieces"\noptions { connected }\nface a #cc8\nface b #8cc\n'
+                      "polygon a rect (0,0) (100,100)\npolygon b rect (300,0) (400,100)\n")
+    rc, out, err = script(f"load {pieces}\nquit\n", file=str(open_border))
+    assert rc == 0 and "loaded open.gg" in out and "loaded pieces.gg" in out
+    assert "open.gg:4:1: warning: this border line ends in the air" in err
+    assert "warning: with `connected`" in err and "never holds face label b" in err

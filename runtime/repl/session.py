@@ -75,11 +75,12 @@ class Output:
         else:
             self.out.write(text + "\n")
 
-    def problem(self, text: str) -> None:
+    def problem(self, text: str, first: str = "bold red") -> None:
+        """An error (or, with `first` another style, a warning), to stderr off a terminal."""
         if self.console is not None:
             for k, part in enumerate(text.split("\n")):
                 hint = part.lstrip().startswith("hint:")
-                self.console.print(part, style="yellow" if hint else "bold red" if k == 0 else None,
+                self.console.print(part, style="yellow" if hint else first if k == 0 else None,
                                    markup=False, highlight=False)
         else:
             self.out.flush()
@@ -102,8 +103,14 @@ class Session:
     # --- the grammar ------------------------------------------------------------------------
     def load(self, path: str) -> None:
         """Load a grammar (.ggr) or compile an example (.gg, .svg); the old session stays on
-        any error."""
-        self.use(load_grammar(path, self.compile_example), path)
+        any error. Its warnings are shown as ggrun shows them."""
+        from grammar_lang.reach import connected_warning
+        warnings: list = []
+        grammar = load_grammar(path, self.compile_example, warnings.append)
+        self.use(grammar, path)
+        gap = connected_warning(grammar)
+        for w in warnings + ([gap] if gap is not None else []):
+            self.out.problem(w.render(), first="bold yellow")
 
     def use(self, grammar: Grammar, path: str) -> None:
         """Start a session on a grammar already in memory."""
