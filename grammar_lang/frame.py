@@ -214,7 +214,37 @@ def find_frame(ex) -> Frame | None:
         raise _frame_error(ex, around[at[bent]][0], crooked_text(frame, bent),
                            "draw the frame's sides straight, and keep other points off them: "
                            "a point within the merge distance of a side is routed through it")
+    outside = _outside(frame, g.vertices, ex.unit)
+    if outside is not None:
+        edge = next(e for e, ends in enumerate(g.edges) if outside in ends[:2])
+        raise _frame_error(ex, edge, f"this lies outside the frame, at {_at(g.vertices[outside])}",
+                           "the frame is the border of the space: draw the example inside it")
     return frame
+
+
+def _outside(frame: Frame, points, unit: float) -> int | None:
+    """The first point that lies outside `frame` by more than a millionth of the unit (on
+    its sides is inside), or None."""
+    tol = 1e-6 * unit
+    x0, y0, x1, y1 = frame.box
+    for v, (x, y) in enumerate(points):
+        if not (x0 - tol <= x <= x1 + tol and y0 - tol <= y <= y1 + tol):
+            return v
+        if not frame.rectangle and not frame.contains(x, y) and not _on_sides(frame, x, y, tol):
+            return v
+    return None
+
+
+def _on_sides(frame: Frame, x: float, y: float, tol: float) -> bool:
+    cs = frame.corners
+    n = len(cs)
+    for k in range(n):
+        a, b = cs[k], cs[(k + 1) % n]
+        dx, dy = b.x - a.x, b.y - a.y
+        t = max(0.0, min(1.0, ((x - a.x) * dx + (y - a.y) * dy) / (dx * dx + dy * dy or 1.0)))
+        if math.hypot(a.x + t * dx - x, a.y + t * dy - y) <= tol:
+            return True
+    return False
 
 
 def crooked_side(frame: Frame, primitives, labels) -> int | None:

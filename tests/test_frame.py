@@ -192,6 +192,22 @@ def test_a_border_that_ends_in_the_air_beside_a_frame_is_located(tmp_path):
         find_frame(load_example(gg))
 
 
+def test_a_shape_outside_the_frame_is_a_located_error(tmp_path):
+    """The frame is the border of the space: a shape drawn beyond it (here a room to its
+    right) could never be drawn, and the run went on without a word."""
+    gg = tmp_path / "out.gg"
+    gg.write_text('example "out"\nface room #ccc\nclass edge { border }\n'
+                  "polygon room rect (10, 0) (20, 10)\n"
+                  "polygon room rect (50, 0) (60, 10)\n"
+                  "border rect (0, 0) (40, 30) class edge\n")
+    with pytest.raises(UserError, match=r"outside the frame, at \(50, 0\)") as err:
+        find_frame(load_example(gg))
+    assert "out.gg:5" in err.value.render()
+    # On a side is inside: a room standing on the frame's bottom, up to its right side.
+    gg.write_text(gg.read_text().replace("(50, 0) (60, 10)", "(30, 0) (40, 10)"))
+    assert find_frame(load_example(gg)) is not None
+
+
 def test_a_frame_side_bent_by_a_point_routed_through_it_is_a_located_error(tmp_path):
     # Found by the fuzzer: a village's tree trunk run out past the frame's left side ended
     # within the merge distance of it, the side was routed through that end, and generation
