@@ -373,3 +373,27 @@ def test_loading_an_example_shows_its_warnings_as_ggrun_does(tmp_path):
     assert rc == 0 and "loaded open.gg" in out and "loaded pieces.gg" in out
     assert "open.gg:4:1: warning: this border line ends in the air" in err
     assert "warning: with `connected`" in err and "never holds face label b" in err
+
+
+def test_the_extent_flag_sizes_the_repls_frame(tmp_path):
+    """`ggrun --repl FILE --extent W×H` builds its engine as ggrun does: the frame at that
+    size (it was left at the example's own, the flag read and dropped)."""
+    out = tmp_path / "r.json"
+    rc, _, err = script(f"save {out}\nquit\n", "--extent", "2400x900",
+                        file=str(ROOT / "examples" / "castle-scene.gg"))
+    assert rc == 0, err
+    xs = sorted({v["x"] for v in json.loads(out.read_text())["vertices"]})
+    ys = sorted({v["y"] for v in json.loads(out.read_text())["vertices"]})
+    assert (xs[0], xs[-1], ys[0], ys[-1]) == (0.0, 2400.0, 0.0, 900.0)
+    # With the same flags, `run N` and `save` write the file ggrun writes.
+    flags = ["--extent", "2400x900", "--seed", "4", "--steps", "30"]
+    rc, _, err = script(f"run 30\nsave {out}\nquit\n", *flags,
+                        file=str(ROOT / "examples" / "castle-scene.gg"))
+    assert rc == 0, err
+    direct = tmp_path / "g.json"
+    assert main([str(ROOT / "examples" / "castle-scene.gg"), *flags, "--out", str(direct),
+                 "--quiet"]) == 0
+    assert out.read_bytes() == direct.read_bytes()
+    from grammar_lang.diagnostics import UserError
+    with pytest.raises(UserError, match="--extent sizes a frame, and this grammar has none"):
+        script("quit\n", "--extent", "2400x900", file=str(ROOT / "examples" / "house.gg"))

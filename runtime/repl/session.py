@@ -28,7 +28,8 @@ from grammar_lang.rules import Grammar, Rule
 from ..engine.costs import parse_cost
 from ..engine.generate import Engine
 from ..engine.rewrite import DirectedRule
-from ..run_cmd import DEFAULT_STEPS, load_grammar, parse_limits, size_target, write_drawing
+from ..run_cmd import (DEFAULT_STEPS, load_grammar, parse_extent, parse_limits, size_target,
+                       write_drawing)
 
 PROMPT = "gg> "
 
@@ -51,12 +52,13 @@ class Options:
     temperature: float = 1.0
     limits: tuple[tuple[int, int], ...] = ()
     bidirectional: bool | None = None
+    extent: str | None = None         # `--extent W×H`, read against each grammar loaded
 
     @staticmethod
     def from_args(args: argparse.Namespace) -> "Options":
         both = None if args.direction is None else args.direction == "both"
         return Options(args.seed, size_target(args.steps, args.iterations), args.cost,
-                       args.temperature, parse_limits(args.limit), both)
+                       args.temperature, parse_limits(args.limit), both, args.extent)
 
 
 class Output:
@@ -122,7 +124,8 @@ class Session:
         try:
             engine = Engine(grammar, o.seed, parse_cost(o.cost, grammar.header.labels, o.steps,
                                                       grammar.header),
-                            o.temperature, bidirectional=o.bidirectional, limits=dict(o.limits))
+                            o.temperature, bidirectional=o.bidirectional, limits=dict(o.limits),
+                            extent=parse_extent(o.extent, grammar))
         except ValueError as exc:
             raise error(f"cannot run '{Path(path).name}': {exc}", None,
                         "check the grammar with 'ggc check'") from None
