@@ -296,6 +296,11 @@ def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")
+    levels = {r.priority for r in (*grammar.rules, *grammar.productions)}
+    for level, n in parse_limits(args.limit):
+        if level not in levels:
+            raise error(f"--limit {level}={n}: no rule of this grammar has priority {level}",
+                        None, "its priorities: " + ", ".join(map(str, sorted(levels))))
 
 
 def _run_jobs(jobs: list[Job], workers: int, stop, show: bool) -> list[tuple[Job, Summary]]:

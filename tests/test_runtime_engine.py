@@ -187,6 +187,8 @@ def test_cli_writes_identical_json_for_the_same_seed(tmp_path):
     (["--cost", "nope"], "unknown cost"),
     (["--cost", "label:zz"], "no face label, edge class or edge label"),
     (["--limit", "x"], "PRIORITY=N"),
+    # A limit on a level no rule has would do nothing (a typo for another level).
+    (["--limit", "7=5"], "no rule of this grammar has priority 7"),
     (["--out", "a.bmp"], "unknown output format"),
     (["--out", "a.png", "--width", "0"], "--width 0 is out of range"),
     (["--count", "0"], "out of range"),
