@@ -296,8 +296,13 @@ def _check_run_options(args: argparse.Namespace, grammar: Grammar) -> None:
     if not (math.isfinite(args.temperature) and args.temperature >= 0):
         raise error(f"--temperature {args.temperature:g} makes no sense", None,
                     "give a finite temperature of at least 0 (0 refuses every cost increase)")
+    check_limits(parse_limits(args.limit), grammar)
+
+
+def check_limits(limits, grammar: Grammar) -> None:
+    """A `--limit` on a level no rule has would do nothing (a typo for another level)."""
     levels = {r.priority for r in (*grammar.rules, *grammar.productions)}
-    for level, n in parse_limits(args.limit):
+    for level, n in limits:
         if level not in levels:
             raise error(f"--limit {level}={n}: no rule of this grammar has priority {level}",
                         None, "its priorities: " + ", ".join(map(str, sorted(levels))))

@@ -397,3 +397,9 @@ def test_the_extent_flag_sizes_the_repls_frame(tmp_path):
     from grammar_lang.diagnostics import UserError
     with pytest.raises(UserError, match="--extent sizes a frame, and this grammar has none"):
         script("quit\n", "--extent", "2400x900", file=str(ROOT / "examples" / "house.gg"))
+
+
+def test_a_limit_on_a_level_no_rule_has_is_refused_as_ggrun_refuses_it():
+    from grammar_lang.diagnostics import UserError
+    with pytest.raises(UserError, match="no rule of this grammar has priority 7"):
+        script("quit\n", "--limit", "7=5")

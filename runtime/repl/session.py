@@ -28,8 +28,8 @@ from grammar_lang.rules import Grammar, Rule
 from ..engine.costs import parse_cost
 from ..engine.generate import Engine
 from ..engine.rewrite import DirectedRule
-from ..run_cmd import (DEFAULT_STEPS, load_grammar, parse_extent, parse_limits, size_target,
-                       write_drawing)
+from ..run_cmd import (DEFAULT_STEPS, check_limits, load_grammar, parse_extent, parse_limits,
+                       size_target, write_drawing)
 
 PROMPT = "gg> "
 
@@ -121,6 +121,7 @@ class Session:
                         "angle-graph rules", None,
                         f"run them with 'ggrun {Path(path).name} --steps N --out FILE.svg'")
         o = self.options
+        check_limits(o.limits, grammar)
         try:
             engine = Engine(grammar, o.seed, parse_cost(o.cost, grammar.header.labels, o.steps,
                                                       grammar.header),
