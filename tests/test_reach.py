@@ -28,6 +28,17 @@ def _grammar(path):
     return compile_example(load_example(path)).grammar
 
 
+@functools.lru_cache(maxsize=None)
+def _pieces():
+    """The pieces example compiled once, for the property test's many draws."""
+    import tempfile
+    from pathlib import Path
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "pieces.gg"
+        path.write_text(PIECES)
+        return compile_example(load_example(path)).grammar
+
+
 @pytest.fixture
 def pieces(tmp_path):
     gg = tmp_path / "pieces.gg"
@@ -72,13 +83,7 @@ def _labels_in(host) -> set[int]:
 def test_a_drawing_holds_only_labels_its_start_can_reach(name, seed):
     """The reach is an over-approximation: whatever a run draws lies inside the reach of what
     it started with, and that start is the starter's and the frame's labels."""
-    path = CONNECTED.get(name)
-    if path is None:
-        import tempfile
-        from pathlib import Path
-        path = Path(tempfile.mkdtemp()) / "pieces.gg"
-        path.write_text(PIECES)
-    grammar = _grammar(path)
+    grammar = _grammar(CONNECTED[name]) if name in CONNECTED else _pieces()
     eng = Engine(grammar, seed=seed)
     first = next(r for r in grammar.rules if r.name == eng.history[0].rule)
     assert _labels_in(eng.host) <= start_labels(grammar, first)
